@@ -1,0 +1,3 @@
+"""Linear elasticity, penalty contact, rigid bodies and loads, stress recovery."""
+
+__all__: list[str] = []

@@ -1,0 +1,105 @@
+"""Hexahedral mesh container shared by the mesher and the FE solver.
+
+Node order of a hexahedron is VTK_HEXAHEDRON's (= ABAQUS C3D8's): nodes 0-3 one quadrilateral,
+4-7 the opposite one, node i+4 facing node i, and 0-1-2-3 counter-clockwise seen from 4-7, so
+that the Jacobian is positive. Local faces, listed with outward normals (right-hand rule):
+
+    face 0 = (0, 3, 2, 1)   ABAQUS S1
+    face 1 = (4, 5, 6, 7)   ABAQUS S2
+    face 2 = (0, 1, 5, 4)   ABAQUS S3
+    face 3 = (1, 2, 6, 5)   ABAQUS S4
+    face 4 = (2, 3, 7, 6)   ABAQUS S5
+    face 5 = (3, 0, 4, 7)   ABAQUS S6
+
+Face sets are arrays of (cell index, local face) pairs; node sets are sorted unique node indices.
+Names are ``"<body>/<set>"``, e.g. ``"planet/flank_drive"`` or ``"sun/rim"``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Mapping
+
+import numpy as np
+
+from tca.errors import InputError
+
+__all__ = ["HEX_FACES", "HexMesh", "ReferencePoint"]
+
+HEX_FACES = np.array(
+    [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]],
+    dtype=np.int64,
+)
+
+
+@dataclass(frozen=True)
+class ReferencePoint:
+    """A reference node of a rigid body: position [mm] and unit axis of rotation."""
+
+    point: tuple[float, float, float]
+    axis: tuple[float, float, float] = (0.0, 0.0, 1.0)
+
+
+def _frozen(d: Mapping | None) -> Mapping:
+    return MappingProxyType(dict(d or {}))
+
+
+@dataclass(frozen=True, eq=False)
+class HexMesh:
+    """8-node hexahedral mesh of one or more bodies, with named node, face and reference sets."""
+
+    points: np.ndarray  # (n, 3) float64 [mm]
+    cells: np.ndarray  # (m, 8) int64, VTK_HEXAHEDRON order
+    cell_body: np.ndarray  # (m,) int64 index into `bodies`
+    bodies: tuple[str, ...] = ("body",)
+    point_sets: Mapping[str, np.ndarray] = field(default_factory=dict)
+    face_sets: Mapping[str, np.ndarray] = field(default_factory=dict)
+    reference_points: Mapping[str, ReferencePoint] = field(default_factory=dict)
+
+    def __post_init__(self):
+        pts = np.ascontiguousarray(self.points, dtype=np.float64)
+        cells = np.ascontiguousarray(self.cells, dtype=np.int64)
+        body = np.ascontiguousarray(self.cell_body, dtype=np.int64)
+        if pts.ndim != 2 or pts.shape[1] != 3:
+            raise InputError("points", pts.shape, "an (n, 3) array")
+        if cells.ndim != 2 or cells.shape[1] != 8:
+            raise InputError("cells", cells.shape, "an (m, 8) array of node indices")
+        if cells.size and (cells.min() < 0 or cells.max() >= len(pts)):
+            raise InputError("cells", (int(cells.min()), int(cells.max())), f"indices in [0, {len(pts) - 1}]")
+        if body.shape != (len(cells),):
+            raise InputError("cell_body", body.shape, f"shape ({len(cells)},)")
+        if body.size and (body.min() < 0 or body.max() >= len(self.bodies)):
+            raise InputError("cell_body", int(body.max()), f"indices into bodies {self.bodies}")
+        object.__setattr__(self, "points", pts)
+        object.__setattr__(self, "cells", cells)
+        object.__setattr__(self, "cell_body", body)
+        object.__setattr__(self, "bodies", tuple(self.bodies))
+        object.__setattr__(
+            self, "point_sets", _frozen({k: np.unique(np.asarray(v, np.int64)) for k, v in (self.point_sets or {}).items()})
+        )
+        object.__setattr__(
+            self, "face_sets", _frozen({k: np.asarray(v, np.int64).reshape(-1, 2) for k, v in (self.face_sets or {}).items()})
+        )
+        object.__setattr__(self, "reference_points", _frozen(self.reference_points))
+
+    @property
+    def n_points(self) -> int:
+        return len(self.points)
+
+    @property
+    def n_cells(self) -> int:
+        return len(self.cells)
+
+    def face_nodes(self, name: str) -> np.ndarray:
+        """Node indices (k, 4) of the faces of a face set, outward-oriented."""
+        fs = self.face_sets[name]
+        return self.cells[fs[:, 0][:, None], HEX_FACES[fs[:, 1]]]
+
+    def face_set_points(self, name: str) -> np.ndarray:
+        """Sorted unique node indices on a face set."""
+        return np.unique(self.face_nodes(name))
+
+    def body_cells(self, body: str) -> np.ndarray:
+        """Indices of the cells of one body."""
+        return np.flatnonzero(self.cell_body == self.bodies.index(body))
