@@ -36,7 +36,7 @@ from .errors import ConvergenceError, GeometryError, InputError
 from .newton import newton
 from .pair import GearPair
 
-__all__ = ["TCAOptions", "ContactKind", "ReferencePairSolution", "PairTCAResult", "run_pair_tca", "solve_reference_pair", "bounded_pass",
+__all__ = ["TCAOptions", "ContactKind", "ReferencePairSolution", "PairTCAResult", "run_pair_tca", "solve_reference_pair", "bounded_pass", "ellipse_outlines",
            "ARCSEC"]
 
 ARCSEC = math.pi / (180 * 3600)  # one arcsecond [rad]
@@ -662,3 +662,37 @@ def run_pair_tca(pair: GearPair, opts: TCAOptions = TCAOptions()) -> PairTCAResu
         pair, opts, phi1, phi2, te, kk, kind, w1.r,
         X[:, :4], l1.r, l2.r, ea, eb, eang, ref.residual[jr], ref, np.array(trans), time.perf_counter() - t0,
     )
+
+
+def ellipse_outlines(result: PairTCAResult, which: int, npts: int = 48) -> np.ndarray:
+    """Contact ellipses as closed 3D outlines (n, npts, 3) in the frame of gear `which` (1 or 2).
+
+    NaN where there is no ellipse (edge contact) or where it is unbounded (line contact).
+    """
+    pair = result.pair
+    f1, f2 = _flanks(pair)
+    n = len(result.phi1)
+    out = np.full((n, npts, 3), np.nan)
+    ok = np.isfinite(result.ellipse_a) & np.isfinite(result.ellipse_b)
+    if not ok.any():
+        return out
+    X = result.params[ok]
+    ph1 = result.phi1[ok] - result.active_pair[ok] * 2 * math.pi / pair.gear1.teeth
+    w1, _, _ = f1.world(X[:, 0], X[:, 1], ph1)
+    ph2 = (result.phi2[ok] - result.active_pair[ok] * 2 * math.pi / pair.gear2.teeth)
+    nrm = w1.n
+    axis = np.broadcast_to(pair.mounts()[0].axis, nrm.shape)
+    e1 = axis - np.einsum("ij,ij->i", axis, nrm)[:, None] * nrm
+    e1 /= np.linalg.norm(e1, axis=-1, keepdims=True)
+    e2 = np.cross(nrm, e1)
+    ang = result.ellipse_angle[ok]
+    A = np.cos(ang)[:, None] * e1 + np.sin(ang)[:, None] * e2  # major axis direction
+    B = np.cross(nrm, A)
+    t = np.linspace(0, 2 * math.pi, npts)
+    pts = (w1.r[:, None, :] + result.ellipse_a[ok][:, None, None] * np.cos(t)[None, :, None] * A[:, None, :]
+           + result.ellipse_b[ok][:, None, None] * np.sin(t)[None, :, None] * B[:, None, :])
+    flank = f1 if which == 1 else f2
+    phi = ph1 if which == 1 else ph2
+    R, _, tt, _ = flank.frame(phi)
+    out[ok] = np.einsum("nji,nkj->nki", R, pts - tt[:, None, :])
+    return out

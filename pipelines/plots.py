@@ -1,0 +1,82 @@
+"""Plots of TCA results (matplotlib, Agg backend): transmission errors and paths of contact."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from tca.pair_tca import ARCSEC, ContactKind, PairTCAResult, ellipse_outlines  # noqa: E402
+
+__all__ = ["plot_pair_te", "plot_contact_paths", "savefig"]
+
+
+def savefig(fig, path: Path) -> Path:
+    """Save and close a figure (plots are made in loops: never leak figures)."""
+    fig.savefig(path, dpi=130, bbox_inches="tight")
+    plt.close(fig)
+    return path
+
+
+def plot_pair_te(r: PairTCAResult, path: Path, title: str = "") -> Path:
+    """TE function over the cycles: the pair in contact (thick), neighbouring pairs (thin), edge contact."""
+    fig, ax = plt.subplots(figsize=(8, 4.2))
+    ref = r.reference
+    pitch = 2 * math.pi / r.pair.gear1.teeth
+    te_ref = (ref.phi2 - r.pair.ratio * ref.phi1) / ARCSEC
+    lo, hi = r.phi1.min(), r.phi1.max()
+    for k in range(-4, 5):
+        x = ref.phi1 + k * pitch
+        sel = (x >= lo - 1e-12) & (x <= hi + 1e-12) & np.isfinite(te_ref)
+        if sel.any():
+            ax.plot(np.degrees(x[sel]), te_ref[sel], color="0.75", lw=0.8, zorder=1)
+    ax.plot(np.degrees(r.phi1), r.te_arcsec, color="C0", lw=2, zorder=2, label="pair in contact")
+    edge = (r.kind == ContactKind.EDGE) | (r.kind == ContactKind.CORNER)
+    if edge.any():
+        ax.plot(np.degrees(r.phi1[edge]), r.te_arcsec[edge], "o", ms=3.5, color="C3", zorder=3, label="edge contact")
+    for t in r.transitions:
+        ax.axvline(math.degrees(t), color="0.5", ls=":", lw=0.8)
+    span = r.te_arcsec.max() - r.te_arcsec.min()
+    if span < 1e-3:  # a flat TE: show it on a sensible scale instead of round-off noise
+        m = r.te_arcsec.mean()
+        ax.set_ylim(m - 1, m + 1)
+    else:  # the pair in contact, with the neighbouring pairs' branches where they come close
+        ax.set_ylim(r.te_arcsec.min() - 0.6 * span, r.te_arcsec.max() + 0.25 * span)
+    ax.set_xlabel(r"$\phi_1$ [deg]")
+    ax.set_ylabel(r"$\Delta\phi_2$ [arcsec]")
+    ax.set_title(title or f"Transmission errors, peak-to-peak {r.te_peak_to_peak_arcsec:.3g} arcsec")
+    ax.grid(alpha=0.3)
+    ax.legend(loc="best", fontsize=8)
+    return savefig(fig, path)
+
+
+def plot_contact_paths(r: PairTCAResult, path: Path, names=("gear 1", "gear 2")) -> Path:
+    """Paths of contact (Eq. 1.14) and contact ellipses on both tooth surfaces, in (z, radius)."""
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4.2))
+    for which, ax, pts, gear, side in ((1, axes[0], r.point1, r.pair.gear1, r.pair.side1),
+                                       (2, axes[1], r.point2, r.pair.gear2, r.pair.side2)):
+        ar = gear.area(side)
+        # working area: z limits and the radii of the start of the fillet and the tip
+        ax.add_patch(plt.Rectangle((ar.z_min, min(ar.r_form, ar.r_tip)), ar.z_max - ar.z_min,
+                                   abs(ar.r_tip - ar.r_form), fill=False, ec="0.4", lw=1))
+        ell = ellipse_outlines(r, which)
+        for e in ell[:: max(1, len(ell) // 12)]:
+            if np.all(np.isfinite(e)):
+                ax.plot(e[:, 2], np.hypot(e[:, 0], e[:, 1]), color="C1", lw=0.7)
+        rad = np.hypot(pts[:, 0], pts[:, 1])
+        edge = (r.kind == ContactKind.EDGE) | (r.kind == ContactKind.CORNER)
+        ax.plot(pts[:, 2], rad, ".", color="C0", ms=3)
+        if edge.any():
+            ax.plot(pts[edge, 2], rad[edge], "o", color="C3", ms=4, label="edge contact")
+            ax.legend(fontsize=8)
+        ax.set_title(f"{names[which - 1]} ({'+y' if side > 0 else '-y'} flank)")
+        ax.set_xlabel("z [mm]")
+        ax.set_ylabel("radius [mm]")
+        ax.grid(alpha=0.3)
+    fig.suptitle("Paths of contact and contact ellipses")
+    return savefig(fig, path)
