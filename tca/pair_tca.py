@@ -297,6 +297,12 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
                             if deep(X[hist[-1]]):
                                 raise ConvergenceError("pair TCA (tangency)", f"phi1 = {math.degrees(phis[i]):.6f} deg",
                                                        res, its)
+                            if _constraints(f1, f2, X[hist[-1]][None])[0][:, 1:].max() > 0.25 * out_of_mesh:
+                                # already past a tip or a face edge and the tangency runs off: leaving the mesh
+                                if direction > 0:
+                                    beyond[hist[-1] + 1:] = True
+                                else:
+                                    beyond[:hist[-1]] = True
                             stop = True
                             break
                     else:
