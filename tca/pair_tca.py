@@ -113,6 +113,21 @@ class PairTCAResult:
     reference: ReferencePairSolution
     transitions: np.ndarray  # phi1 at which the pair in contact changes [rad]
     elapsed: float
+    boundary: np.ndarray  # where edge/corner contact is: 10 flank + boundary (1 tip, 2 z_max, 3 z_min),
+    #                       100 flank + 10 boundary + end for corners, 1000 + 10 b1 + b2 for edge-to-edge
+
+    def edge_boundaries(self) -> set[int]:
+        """Working-area boundaries (1 tip, 2 z_max, 3 z_min) that carry edge or corner contact."""
+        out = set()
+        for w in self.boundary[(self.kind == ContactKind.EDGE) | (self.kind == ContactKind.CORNER)]:
+            w = int(w)
+            if w >= 1000:
+                out |= {(w // 10) % 10, w % 10}
+            elif w >= 100:
+                out.add((w // 10) % 10)
+            else:
+                out.add(w % 10)
+        return out
 
     @property
     def te_arcsec(self) -> np.ndarray:
@@ -667,6 +682,7 @@ def run_pair_tca(pair: GearPair, opts: TCAOptions = TCAOptions()) -> PairTCAResu
     return PairTCAResult(
         pair, opts, phi1, phi2, te, kk, kind, w1.r,
         X[:, :4], l1.r, l2.r, ea, eb, eang, ref.residual[jr], ref, np.array(trans), time.perf_counter() - t0,
+        ref.where[jr],
     )
 
 
