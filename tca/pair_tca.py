@@ -115,6 +115,8 @@ class PairTCAResult:
     elapsed: float
     boundary: np.ndarray  # where edge/corner contact is: 10 flank + boundary (1 tip, 2 z_max, 3 z_min),
     #                       100 flank + 10 boundary + end for corners, 1000 + 10 b1 + b2 for edge-to-edge
+    transition_te: np.ndarray  # TE at the transitions [rad] (both pairs in contact there)
+    te_extremes: tuple  # (min, max) of the TE function [rad]: grid, exact transitions, refined vertices
 
     def edge_boundaries(self) -> set[int]:
         """Working-area boundaries (1 tip, 2 z_max, 3 z_min) that carry edge or corner contact."""
@@ -135,8 +137,8 @@ class PairTCAResult:
 
     @property
     def te_peak_to_peak_arcsec(self) -> float:
-        t = self.te_arcsec
-        return float(t.max() - t.min())
+        """Peak-to-peak TE [arcsec], with the extremes at the exact transitions and refined vertices."""
+        return float(self.te_extremes[1] - self.te_extremes[0]) / ARCSEC
 
     @property
     def edge_contact(self) -> bool:
@@ -152,8 +154,9 @@ class PairTCAResult:
         finite_a = self.ellipse_a[np.isfinite(self.ellipse_a)]
         return {
             "te_peak_to_peak_arcsec": self.te_peak_to_peak_arcsec,
-            "te_max_arcsec": float(self.te_arcsec.max()),
-            "te_min_arcsec": float(self.te_arcsec.min()),
+            "te_max_arcsec": float(self.te_extremes[1] / ARCSEC),
+            "te_min_arcsec": float(self.te_extremes[0] / ARCSEC),
+            "te_transitions_arcsec": [float(t / ARCSEC) for t in self.transition_te],
             "edge_contact": self.edge_contact,
             "contact_kinds": kinds,
             "positions": int(len(self.phi1)),
@@ -607,6 +610,88 @@ def _tip_points(fi, u, v):
     return np.stack([u, v], -1)
 
 
+def _transitions(pair, f1, f2, ref, J, s, opts, phi1, cand, a, ks, kind_c):
+    """phi1 and TE at each change of the pair in contact (exact where both contacts are surface contacts).
+
+    Between grid points i and i+1 the pair in contact changes from ka to kb; the transition is the
+    root of g(phi) = TE_ka(phi) - TE_kb(phi), where TE_k(phi) is the reference pair's TE at
+    phi - k p (p the angular pitch). Regula falsi (Illinois) on batched tangency solves.
+    """
+    pitch = 2 * math.pi / pair.gear1.teeth
+    ratio = pair.ratio
+    idx = np.flatnonzero(np.diff(ks[a]) != 0)
+    n = len(idx)
+    lo, hi = phi1[idx], phi1[idx + 1]
+    ka, kb = a[idx], a[idx + 1]
+    ga = cand[idx, ka] - cand[idx, kb]
+    gb = cand[idx + 1, ka] - cand[idx + 1, kb]
+    frac = np.where(np.isfinite(ga) & np.isfinite(gb) & (ga != gb), ga / np.where(ga != gb, ga - gb, 1.0), 0.5)
+    frac = np.clip(frac, 0.0, 1.0)
+    t_phi = lo + frac * (hi - lo)
+    t_te = np.where(np.isfinite(ga), cand[idx, ka] + frac * (cand[idx + 1, ka] - cand[idx, ka]), np.nan)
+    exact = np.zeros(n, bool)
+    for q in range(n):
+        i = idx[q]
+        exact[q] = all(kind_c[i + di, col] == ContactKind.SURFACE for di in (0, 1) for col in (ka[q], kb[q]))
+    if not exact.any():
+        return t_phi.tolist(), t_te.tolist()
+    sel = np.flatnonzero(exact)
+    # reference-grid indices bracketing each pair's position (guesses by linear interpolation)
+    h = pitch / s
+    j0 = ref.j[J]
+
+    def solve(phi, kcol):
+        k = ks[kcol]
+        phr = phi - k * pitch
+        jf = (phr - ref.phi1[J]) / h + j0 + J
+        jl = np.clip(np.floor(jf).astype(int), 0, len(ref.j) - 2)
+        w = (jf - jl)[:, None]
+        guess = ref.x[jl] * (1 - w) + ref.x[jl + 1] * w
+        r = newton(tangency_system(f1, f2, phr), guess, tol=opts.tol, maxiter=30, raise_on_failure=False)
+        return r.x[:, 4] - ratio * phr, r.converged
+
+    xa, xb = lo[sel].copy(), hi[sel].copy()
+    fa, fb = ga[sel].copy(), gb[sel].copy()
+    ok = np.ones(len(sel), bool)
+    side = np.zeros(len(sel), int)
+    xm = t_phi[sel].copy()
+    tem = t_te[sel].copy()
+    for _ in range(40):
+        xm = np.where(fa != fb, (xa * fb - xb * fa) / np.where(fa != fb, fb - fa, 1.0), 0.5 * (xa + xb))
+        ta, ca = solve(xm, ka[sel])
+        tb, cb = solve(xm, kb[sel])
+        ok &= ca & cb
+        fm = ta - tb
+        tem = ta
+        if np.all(np.abs(fm) < 1e-13) or not ok.any():
+            break
+        left = fm * fa > 0  # root between xm and xb
+        xa, fa = np.where(left, xm, xa), np.where(left, fm, fa)
+        xb, fb = np.where(left, xb, xm), np.where(left, fb, fm)
+        # Illinois: halve the stale end's value
+        fb = np.where(left & (side == 1), fb / 2, fb)
+        fa = np.where(~left & (side == -1), fa / 2, fa)
+        side = np.where(left, 1, -1)
+    t_phi[sel[ok]] = xm[ok]
+    t_te[sel[ok]] = tem[ok]
+    return t_phi.tolist(), t_te.tolist()
+
+
+def _extremes(te, kk, kind, trans_te):
+    """(min, max) TE: grid values, exact transitions, and interior extrema refined by a local parabola."""
+    vals = list(te) + [t for t in trans_te if np.isfinite(t)]
+    for i in range(1, len(te) - 1):
+        same = kk[i - 1] == kk[i] == kk[i + 1] and np.all(kind[i - 1:i + 2] == ContactKind.SURFACE)
+        if not same:
+            continue
+        if (te[i] >= te[i - 1] and te[i] >= te[i + 1]) or (te[i] <= te[i - 1] and te[i] <= te[i + 1]):
+            y0, y1, y2 = te[i - 1], te[i], te[i + 1]
+            den = y0 - 2 * y1 + y2
+            if den != 0:
+                vals.append(y1 - (y2 - y0) ** 2 / (8 * den))
+    return (float(min(vals)), float(max(vals)))
+
+
 # ---------------------------------------------------------------------------------------------
 def run_pair_tca(pair: GearPair, opts: TCAOptions = TCAOptions()) -> PairTCAResult:
     """TCA of a gear pair over opts.cycles cycles of meshing; see the module docstring."""
@@ -671,18 +756,14 @@ def run_pair_tca(pair: GearPair, opts: TCAOptions = TCAOptions()) -> PairTCAResu
         sub2 = type(w2)(*(f[surf] for f in w2))
         a_, b_, ang_, _ = contact_ellipse(sub1, sub2, opts.elastic_approach, axis)
         ea[surf], eb[surf], eang[surf] = a_, b_, ang_
-    # transitions: where the active pair changes, interpolated between grid points
-    trans = []
-    for i in np.flatnonzero(np.diff(kk) != 0):
-        ka, kb = a[i], a[i + 1]
-        d0 = cand[i, ka] - cand[i, kb]
-        d1 = cand[i + 1, ka] - cand[i + 1, kb]
-        f = d0 / (d0 - d1) if np.isfinite(d0) and np.isfinite(d1) and d0 != d1 else 0.5
-        trans.append(phi1[i] + min(max(f, 0.0), 1.0) * (phi1[i + 1] - phi1[i]))
+    # transitions: where the active pair changes, solved exactly (TE of both pairs equal) where both
+    # contacts are surface contacts, interpolated otherwise
+    trans, trans_te = _transitions(pair, f1, f2, ref, J, s, opts, phi1, cand, a, ks, kind_c)
+    ext = _extremes(te, kk, kind, trans_te)
     return PairTCAResult(
         pair, opts, phi1, phi2, te, kk, kind, w1.r,
         X[:, :4], l1.r, l2.r, ea, eb, eang, ref.residual[jr], ref, np.array(trans), time.perf_counter() - t0,
-        ref.where[jr],
+        ref.where[jr], np.array(trans_te), ext,
     )
 
 

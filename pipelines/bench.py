@@ -1,0 +1,53 @@
+"""`make bench`: every area's speed-vs-error benchmark, one subprocess each, gathered in one report.
+
+Each ``pipelines.bench_<area>`` module writes ``<out>/<area>.md`` (and its plots); this runner
+writes ``<out>/REPORT.md`` linking them. TCA runs on one core (the target is per core); the FE
+benchmark uses both cores.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+__all__ = ["main", "AREAS"]
+
+# area -> (module, environment overrides)
+ONE_CORE = {"OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
+AREAS = {
+    "tca": ("pipelines.bench_tca", ONE_CORE),
+}
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--out", default="out/bench")
+    ap.add_argument("--only", nargs="*", help="areas to run (default: all)")
+    args = ap.parse_args(argv)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    report = ["# gearfe benchmarks", "", f"Started {time.strftime('%Y-%m-%d %H:%M:%S')}, "
+              f"load {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores.", ""]
+    status = 0
+    for area, (mod, env) in AREAS.items():
+        if args.only and area not in args.only:
+            continue
+        if importlib.util.find_spec(mod) is None:
+            raise SystemExit(f"benchmark module {mod} is missing")
+        t0 = time.perf_counter()
+        p = subprocess.run([sys.executable, "-m", mod, "--out", str(out)], env={**os.environ, **env})
+        report.append(f"- [{area}]({area}.md): {'ok' if p.returncode == 0 else f'FAILED ({p.returncode})'}, "
+                      f"{time.perf_counter() - t0:.0f} s")
+        status |= p.returncode != 0
+    (out / "REPORT.md").write_text("\n".join(report) + "\n")
+    print(f"wrote {out / 'REPORT.md'}")
+    return int(status)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
