@@ -625,7 +625,8 @@ def _transitions(pair, f1, f2, ref, J, s, opts, phi1, cand, a, ks, kind_c):
     ka, kb = a[idx], a[idx + 1]
     ga = cand[idx, ka] - cand[idx, kb]
     gb = cand[idx + 1, ka] - cand[idx + 1, kb]
-    frac = np.where(np.isfinite(ga) & np.isfinite(gb) & (ga != gb), ga / np.where(ga != gb, ga - gb, 1.0), 0.5)
+    with np.errstate(invalid="ignore", divide="ignore"):  # masked where a pair has no contact (-inf)
+        frac = np.where(np.isfinite(ga) & np.isfinite(gb) & (ga != gb), ga / np.where(ga != gb, ga - gb, 1.0), 0.5)
     frac = np.clip(frac, 0.0, 1.0)
     t_phi = lo + frac * (hi - lo)
     t_te = np.where(np.isfinite(ga), cand[idx, ka] + frac * (cand[idx + 1, ka] - cand[idx, ka]), np.nan)
