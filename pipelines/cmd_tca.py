@@ -18,7 +18,7 @@ from tca.errors import InputError
 from .cases import load_case
 from .outdir import staged_output
 
-__all__ = ["add_args", "handle", "KINDS"]
+__all__ = ["add_args", "handle", "run_case", "to_json", "KINDS"]
 
 # case kind -> module in pipelines with run(case: Table, out: Path) -> dict (the summary)
 KINDS = {
@@ -31,22 +31,29 @@ def add_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("--out", required=True, help="output folder")
 
 
-def handle(args) -> int:
-    case = load_case(args.case)
+def run_case(case, out: Path, label: str = "") -> dict:
+    """Run a TCA case (a strict Table) writing its files into `out`; returns the summary (also written)."""
     kind = case.get("kind", str, choices=tuple(KINDS))
     case.get("title", str, "")
     mod = importlib.import_module(KINDS[kind])
     t0 = time.perf_counter()
+    summary = mod.run(case, Path(out))
+    case.done()
+    summary = {"kind": kind, "case": label, **summary, "elapsed_s": time.perf_counter() - t0}
+    (Path(out) / "summary.json").write_text(json.dumps(summary, indent=2, default=to_json) + "\n")
+    return summary
+
+
+def handle(args) -> int:
+    case = load_case(args.case)
     with staged_output(args.out) as tmp:
-        summary = mod.run(case, Path(tmp))
-        case.done()
-        summary = {"kind": kind, "case": str(args.case), **summary, "elapsed_s": time.perf_counter() - t0}
-        (Path(tmp) / "summary.json").write_text(json.dumps(summary, indent=2, default=_json) + "\n")
+        summary = run_case(case, Path(tmp), str(args.case))
     _print_summary(summary, args.out)
     return 0
 
 
-def _json(x):
+def to_json(x):
+    """json.dumps default for numpy scalars and arrays."""
     import numpy as np
 
     if isinstance(x, (np.floating, np.integer)):

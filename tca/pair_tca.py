@@ -315,8 +315,8 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
                             if deep(X[hist[-1]]):
                                 raise ConvergenceError("pair TCA (tangency)", f"phi1 = {math.degrees(phis[i]):.6f} deg",
                                                        res, its)
-                            if _constraints(f1, f2, X[hist[-1]][None])[0][:, 1:].max() > 0.25 * out_of_mesh:
-                                # already past a tip or a face edge and the tangency runs off: leaving the mesh
+                            if _constraints(f1, f2, X[hist[-1]][None])[0][:, 1].max() > 0.25 * out_of_mesh:
+                                # already past a tooth tip and the tangency runs off: leaving the mesh
                                 if direction > 0:
                                     beyond[hist[-1] + 1:] = True
                                 else:
@@ -327,9 +327,10 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
                         xs = r.x[q]
                     X[i], tan_ok[i] = xs, True
                     hist.append(i)
-                    # out of mesh: the tangency point is past a tip or a face edge by more than a module;
-                    # the positions beyond cannot touch either
-                    if _constraints(f1, f2, xs[None])[0][:, 1:].max() > out_of_mesh:
+                    # out of mesh: the tangency point is past a tooth tip by more than a module; the
+                    # positions beyond cannot touch either (past a face edge the pair may still touch at
+                    # that edge, so those positions are searched for edge contact)
+                    if _constraints(f1, f2, xs[None])[0][:, 1].max() > out_of_mesh:
                         if direction > 0:
                             beyond[i + 1:] = True
                         else:
@@ -725,6 +726,12 @@ def run_pair_tca(pair: GearPair, opts: TCAOptions = TCAOptions()) -> PairTCAResu
     bounded_pass(pair, ref, np.flatnonzero(need), opts)
     te_ref = ref.phi2 - ratio * ref.phi1
     cand = np.where(valid, te_ref[np.clip(rj + J, 0, 2 * J)], -np.inf)
+    if not np.all(np.isfinite(cand.max(1))):
+        i = int(np.flatnonzero(~np.isfinite(cand.max(1)))[0])
+        raise GeometryError("pair", "no contact",
+                            f"no pair of teeth is in contact at phi1 = "
+                            f"{math.degrees(ref.phi1[J] + out_j[i] * (2 * math.pi / pair.gear1.teeth) / s):.4f} deg "
+                            "(contact ratio below 1, or working areas that do not overlap)")
     best = cand.max(1, keepdims=True)
     tie = cand >= best - 1e-10
     kind_c = np.where(valid, ref.kind[np.clip(rj + J, 0, 2 * J)], 0)

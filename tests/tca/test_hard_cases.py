@@ -69,3 +69,18 @@ def test_peak_to_peak_is_independent_of_the_grid(sun_planet):
     b = run_pair_tca(pair, TCAOptions(cycles=1, steps_per_cycle=400))
     assert abs(a.te_peak_to_peak_arcsec - b.te_peak_to_peak_arcsec) < 0.01
     assert np.allclose(a.transition_te, b.transition_te, atol=1e-9 * 4.8e-6)
+
+
+def test_profile_crowning_alone_gives_face_edge_contact():
+    # A helical pinion crowned in profile only (no plunging): its contact runs along the face with zero
+    # TE and reaches the face edges (boundaries 2, 3) - the edge contact that longitudinal crowning
+    # (Eq. 1.6) removes; with dgamma = 3 arcmin it is at the edges throughout.
+    g1 = Gear("pinion", 21, 2.0, d(20), 20, helix=d(10), hand=1, parabola_pos=0.004)
+    g2 = Gear("gear", 35, 2.0, d(20), 20, helix=d(10), hand=-1)
+    r = run_pair_tca(GearPair(g1, g2), TCAOptions(steps_per_cycle=12))
+    assert r.edge_contact and r.edge_boundaries() <= {2, 3}
+    surf = r.kind == ContactKind.SURFACE
+    assert np.abs(r.te_arcsec[surf]).max() < 1e-6  # the contact point stays on the pitch line
+    r = run_pair_tca(GearPair(g1, g2, Misalignment(d_gamma=3 * ARCMIN)), TCAOptions(steps_per_cycle=12))
+    assert np.all(r.kind != ContactKind.SURFACE)
+    assert r.max_residual < 1e-10
