@@ -1,0 +1,112 @@
+"""Off-screen images of FE results with pyvista: stress on the contacting teeth and the whole model.
+
+Works without a display: VTK renders through EGL (Mesa, software) when
+``VTK_DEFAULT_OPENGL_WINDOW=vtkEGLRenderWindow`` is set (done here before pyvista is imported).
+Every plotter is closed after its screenshot, so sweeps can render many images.
+"""
+
+from __future__ import annotations
+
+import os
+
+os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+
+from pathlib import Path  # noqa: E402
+
+import numpy as np  # noqa: E402
+import pyvista as pv  # noqa: E402
+
+from mesher.hexmesh import HexMesh  # noqa: E402
+from tca.errors import InputError  # noqa: E402
+
+pv.OFF_SCREEN = True
+
+__all__ = ["to_pyvista", "render_contact_zone", "render_overview", "image_is_blank"]
+
+SCALAR_BAR = dict(title_font_size=18, label_font_size=14, n_labels=6, fmt="%.0f", vertical=True,
+                  position_x=0.86, position_y=0.12, height=0.76, width=0.06)
+
+
+def to_pyvista(mesh: HexMesh, point_data: dict | None = None, cell_data: dict | None = None) -> pv.UnstructuredGrid:
+    """A pyvista grid of a hexahedral mesh with named point and cell fields."""
+    grid = pv.UnstructuredGrid({pv.CellType.HEXAHEDRON: mesh.cells}, mesh.points)
+    grid.cell_data["body"] = mesh.cell_body
+    for k, v in (point_data or {}).items():
+        v = np.asarray(v)
+        if len(v) != mesh.n_points:
+            raise InputError(f"point_data.{k}", v.shape, f"length {mesh.n_points}")
+        grid.point_data[k] = v
+    for k, v in (cell_data or {}).items():
+        grid.cell_data[k] = np.asarray(v)
+    return grid
+
+
+def _plotter(size):
+    p = pv.Plotter(off_screen=True, window_size=list(size))
+    p.set_background("white")
+    return p
+
+
+def render_contact_zone(grid: pv.UnstructuredGrid, field: str, focus, normal, path: Path, *, radius: float,
+                        title: str = "von Mises stress [MPa]", clim=None, size=(1600, 1100),
+                        caption: str = "") -> Path:
+    """Stress on the teeth around a contact point: camera on `focus` [mm], looking along -`normal`.
+
+    Only cells within ~3 radius of the focus are drawn (the contacting teeth), coloured by the
+    point field `field`, with a labelled scalar bar; `clim` fixes the colour range (to compare
+    images). Returns the PNG path.
+    """
+    if field not in grid.point_data:
+        raise InputError("field", field, "a point field of the result: " + ", ".join(grid.point_data))
+    focus = np.asarray(focus, float)
+    normal = np.asarray(normal, float)
+    normal = normal / np.linalg.norm(normal)
+    centers = grid.cell_centers().points
+    near = np.flatnonzero(np.linalg.norm(centers - focus, axis=1) < 3 * radius)
+    sub = grid.extract_cells(near) if len(near) else grid
+    p = _plotter(size)
+    try:
+        p.add_mesh(sub, scalars=field, cmap="jet", clim=clim, show_edges=True, edge_color="#595959", line_width=0.3,
+                   scalar_bar_args={**SCALAR_BAR, "title": title})
+        if caption:
+            p.add_text(caption, position="upper_left", font_size=11, color="black")
+        up = np.cross(normal, [0.0, 0.0, 1.0])
+        if np.linalg.norm(up) < 1e-6:
+            up = np.array([0.0, 1.0, 0.0])
+        p.camera.focal_point = focus
+        p.camera.position = focus + normal * radius * 4.0
+        p.camera.up = np.cross(up, normal)
+        p.camera.view_angle = 2 * np.degrees(np.arctan(1.15 * radius / (4.0 * radius)))
+        p.screenshot(str(path))
+    finally:
+        p.close()
+    return Path(path)
+
+
+def render_overview(grid: pv.UnstructuredGrid, field: str, path: Path, *, title: str = "von Mises stress [MPa]",
+                    clim=None, size=(1600, 1100), caption: str = "") -> Path:
+    """The whole model coloured by `field`, isometric view."""
+    if field not in grid.point_data:
+        raise InputError("field", field, "a point field of the result: " + ", ".join(grid.point_data))
+    p = _plotter(size)
+    try:
+        p.add_mesh(grid, scalars=field, cmap="jet", clim=clim, show_edges=False,
+                   scalar_bar_args={**SCALAR_BAR, "title": title})
+        if caption:
+            p.add_text(caption, position="upper_left", font_size=11, color="black")
+        p.view_isometric()
+        p.reset_camera()
+        p.screenshot(str(path))
+    finally:
+        p.close()
+    return Path(path)
+
+
+def image_is_blank(path: Path, min_colored: float = 0.02) -> bool:
+    """True when a screenshot is (almost) uniform: less than `min_colored` of pixels off the background."""
+    import matplotlib.image as mpimg
+
+    img = mpimg.imread(str(path))[..., :3]
+    bg = img[0, 0]
+    off = np.any(np.abs(img - bg) > 0.05, axis=-1)
+    return bool(off.mean() < min_colored)
