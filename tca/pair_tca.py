@@ -309,7 +309,7 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
                     if not good[q]:
                         # retry once from the last solution; then the pair has left its mesh (or raise)
                         xs, conv, res, its = _solve_one(tangency_system(f1, f2, np.array([phis[i]])), X[hist[-1]],
-                                                        opts.tol, prefer)
+                                                        opts.tol, prefer, maxiter=10)
                         total_its += its
                         if not (conv and _in_domain(f1, f2, xs[None])[0]):
                             if deep(X[hist[-1]]):
