@@ -5,9 +5,16 @@ Steps (timings reported in ``FEResult.info.timings``):
 1. element stiffness (C3D8I-like or C3D8) and block assembly of K (``fem.elements``, ``fem.assembly``);
 2. supports by elimination, K_r = T^T K T, f_r = T^T (f - K u_p) + f_ref (``fem.constraints``);
 3. contact geometry from the undeformed mesh; candidate slave nodes g0 < search_gap (``fem.contact``);
-4. one sparse factorization with the dense Schur complement on C = candidate contact DOFs and
-   free rigid DOFs (``fem.linsolve``); the active-set penalty problem is solved on C by dense
-   algebra, and the other DOFs follow by one back substitution;
+4. the reduced stiffness is bordered by the gap rows of the k candidate nodes,
+
+       A = [K_r  G_r^T]      (symmetric indefinite; unknowns (q, mu), mu = -lambda),
+           [G_r    0  ]
+
+   and factored once with the Schur complement on C = (free rigid DOFs, gap rows):
+   S = [[H, -B^T], [-B, -W]] in the notation of ``fem.contact``, and the forward substitution
+   gives f^_F and the gaps g^ of the load with the free rigid DOFs clamped. The active-set
+   penalty problem is solved on these k + n_F unknowns by dense algebra, and one backward
+   substitution gives all DOFs (``fem.linsolve``): no refactorization per contact iteration;
 5. checks: no slave node outside the candidate set penetrates; every Newton-like loop converged;
 6. stresses by Gauss-point extrapolation and nodal averaging (``fem.stress``); reactions.
 """
@@ -17,15 +24,15 @@ from __future__ import annotations
 import time
 
 import numpy as np
-import scipy.linalg as sla
+import scipy.sparse as sp
 
 from mesher.hexmesh import HexMesh
-from tca.errors import ConvergenceError, GearfeError, InputError
+from tca.errors import ConvergenceError, InputError
 
 from . import stress as st
 from .assembly import assemble_blocks, surface_load
 from .constraints import reduction
-from .contact import ContactSet, contact_set, penalty_active_set
+from .contact import contact_set, penalty_active_set
 from .elements import hex8_matrices
 from .linsolve import schur_system
 from .model import FEModel
@@ -79,61 +86,48 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
     t1 = time.perf_counter()
     cs = contact_set(mesh, model.contacts, E_c, model.contact.penalty_factor) if model.contacts else None
     cand = np.flatnonzero(cs.candidate) if cs is not None else np.zeros(0, np.int64)
-    Gr = (cs.G[cand] @ T).tocsc() if cs is not None else None
+    k = len(cand)
+    n_r = red.n
     F = red.free_rigid
-    C1 = np.setdiff1d(np.flatnonzero(np.diff(Gr.indptr) > 0), F) if Gr is not None else np.zeros(0, np.int64)
-    C = np.union1d(C1, F)
-    i1 = np.searchsorted(C, C1)
-    iF = np.searchsorted(C, F)
+    A = Kr
+    if k:
+        Gr = (cs.G[cand] @ T).tocsr()
+        zero = sp.csr_matrix((np.zeros(k), (np.arange(k), np.arange(k))), shape=(k, k))
+        A = sp.bmat([[Kr, Gr.T], [Gr, zero]], format="csr")
+    # Schur rows: the free rigid DOFs, then the gap rows (bordering)
+    C = np.concatenate([F, n_r + np.arange(k)])
+    iF, ig = np.arange(len(F)), len(F) + np.arange(k)
     t["contact_setup_s"] = time.perf_counter() - t1
 
     t1 = time.perf_counter()
-    sysm = schur_system(Kr, C, model.solver.solver)
+    sysm = schur_system(A, C, model.solver.solver, definite=(k == 0))
     t["factor_s"] = time.perf_counter() - t1
 
     state = {}
 
-    def solve_c(fC: np.ndarray) -> np.ndarray:
+    def solve_c(yC: np.ndarray) -> np.ndarray:
         tc = time.perf_counter()
         S = sysm.schur
-        S11 = S[np.ix_(i1, i1)]
-        S1F = S[np.ix_(i1, iF)]
-        SFF = S[np.ix_(iF, iF)]
-        k = len(cand)
-        if len(i1):
-            try:
-                cf = sla.cho_factor(S11)
-            except np.linalg.LinAlgError:
-                raise GearfeError("condensed stiffness on the contact DOFs is not positive definite: a body is not supported") from None
-            G1 = Gr[:, C1].toarray()
-            GF = Gr[:, F].toarray()
-            Y = sla.cho_solve(cf, np.column_stack([G1.T, S1F, fC[i1]]))
-            YG, YF, Yf = Y[:, :k], Y[:, k:k + len(F)], Y[:, -1]
-        else:
-            G1 = np.zeros((k, 0))
-            GF = Gr[:, F].toarray() if Gr is not None else np.zeros((0, len(F)))
-            YG, YF, Yf = np.zeros((0, k)), np.zeros((0, len(F))), np.zeros(0)
-        W = G1 @ YG
-        B = G1 @ YF - GF
-        H = SFF - S1F.T @ YF
-        g0 = cs.gap0[cand] + cs.G[cand] @ red.u_prescribed if cs is not None else np.zeros(0)
-        ghat = g0 + G1 @ Yf
-        fhat = fC[iF] - S1F.T @ Yf
-        kdiag = Kr.diagonal()[F] if len(F) else np.zeros(0)
-        seed = cs.seed[cand] if cs is not None else np.zeros(0, bool)
-        stiff = cs.stiffness[cand] if cs is not None else np.zeros(0)
-        area = cs.area[cand] if cs is not None else np.zeros(0)
+        W = -S[np.ix_(ig, ig)]
+        B = -S[np.ix_(ig, iF)]
+        H = S[np.ix_(iF, iF)]
+        g_p = cs.gap0[cand] + cs.G[cand] @ red.u_prescribed if k else np.zeros(0)
+        ghat = g_p - yC[ig]
+        fhat = yC[iF]
+        kdiag = Kr.diagonal()[F]
+        seed = cs.seed[cand] if k else np.zeros(0, bool)
+        stiff = cs.stiffness[cand] if k else np.zeros(0)
+        area = cs.area[cand] if k else np.zeros(0)
         sol = penalty_active_set(W, B, H, ghat, fhat, stiff, area, seed, model.contact, kdiag)
-        u1 = Yf + YG @ sol.lam - YF @ sol.u_free
-        uC = np.empty(len(C))
-        uC[i1] = u1
-        uC[iF] = sol.u_free
+        xC = np.empty(len(C))
+        xC[iF] = sol.u_free
+        xC[ig] = -sol.lam  # bordered unknowns are -lambda: K u + G^T (-lambda) = f
         state["sol"] = sol
         state["contact_s"] = time.perf_counter() - tc
-        return uC
+        return xC
 
     t1 = time.perf_counter()
-    q = sysm.solve(fr, solve_c)
+    q = sysm.solve(np.concatenate([fr, np.zeros(k)]), solve_c)[:n_r]
     t["solve_s"] = time.perf_counter() - t1
     t["contact_s"] = state.get("contact_s", 0.0)
     sol = state.get("sol")

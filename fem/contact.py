@@ -238,16 +238,16 @@ def active_set(W, B, H, ghat, fhat, k, active0, max_iterations: int, h_scale) ->
         lam, uF = _solve_set(W, B, H, ghat, fhat, k, A, h_scale)
         g = ghat + W @ lam - (B @ uF if len(uF) else 0.0)
         A_new = g < 0.0
-        if np.array_equal(A_new, A):
+        changed = A_new != A
+        if not changed.any():
             return ActiveSetSolution(lam, uF, g, A, it)
+        viol = float(np.abs(g[changed]).max())  # [mm] gap of the nodes that switch
         key = A_new.tobytes()
         if key in seen:
-            viol = float(np.abs(g[A_new != A]).max())
             raise ConvergenceError("contact active set", "a repeated set (cycling)", viol, it)
         seen.add(key)
         A = A_new
-    viol = float(np.abs(g[A_new != A]).max())
-    raise ConvergenceError("contact active set", f"{int((A_new != A).sum())} nodes still changing", viol, max_iterations)
+    raise ConvergenceError("contact active set", f"{int(changed.sum())} nodes still switching", viol, max_iterations)
 
 
 def penalty_active_set(W, B, H, ghat, fhat, k, area, active0, opts: ContactOptions, h_scale) -> ActiveSetSolution:

@@ -1,18 +1,20 @@
 """Sparse solves: a factorization with a dense Schur complement on a small set of rows C.
 
-Contact couples only the DOFs of the candidate contact nodes and the free rigid-body DOFs (the
-set C, a few thousand rows). The stiffness is factored once with C eliminated last,
+Contact couples the stiffness only through a few hundred gap rows and the free rigid-body DOFs
+(the set C). A symmetric matrix A (the stiffness bordered by the gap rows, ``fem.analysis``) is
+factored once with C eliminated last,
 
-    [K_RR K_RC] [u_R]   [f_R]          S = K_CC - K_CR K_RR^-1 K_RC         (dense)
-    [K_CR K_CC] [u_C] = [f_C],         f~_C = f_C - K_CR K_RR^-1 f_R,
+    [A_RR A_RC] [x_R]   [b_R]          S = A_CC - A_CR A_RR^-1 A_RC         (dense)
+    [A_CR A_CC] [x_C] = [b_C],         b~_C = b_C - A_CR A_RR^-1 b_R,
 
-the contact problem is solved on (S, f~_C) by the caller, and u_R = K_RR^-1 (f_R - K_RC u_C)
-follows by one back substitution. K_RR must be nonsingular: every body is held when its free
+the caller chooses x_C from (S, b~_C) (the contact problem), and x_R = A_RR^-1 (b_R - A_RC x_C)
+follows by one back substitution. A_RR must be nonsingular: every body is held when its free
 rigid DOFs (in C) are clamped.
 
 Backends, chosen by measurement (MEASURED.md and ``pipelines.bench_fem``):
-- ``pardiso``: MKL PARDISO, SPD, Schur mode (one factorization + partial solves).
-- ``superlu``: pure scipy fallback; factors K_RR with SuperLU and forms S with |C| solves.
+- ``pardiso``: MKL PARDISO (SPD, or symmetric indefinite when C holds gap rows), Schur mode:
+  one factorization, a forward and a backward substitution.
+- ``superlu``: pure scipy fallback; factors A_RR with SuperLU and forms S with |C| solves.
 ``linear_solve`` also offers ``amg`` (pyamg smoothed aggregation + rigid-body modes, CG) for
 solves without contact.
 """
@@ -58,13 +60,13 @@ class SchurSystem:
         return self._solve(f, solve_c)
 
 
-def schur_system(K: sp.spmatrix, C: np.ndarray, method: str = "auto") -> SchurSystem:
-    """Factor K once, with the dense Schur complement on rows C (may be empty)."""
+def schur_system(K: sp.spmatrix, C: np.ndarray, method: str = "auto", definite: bool = True) -> SchurSystem:
+    """Factor symmetric K once, with the dense Schur complement on sorted rows C (may be empty)."""
     method = choose_solver(method)
     C = np.asarray(C, np.int64)
     t0 = time.perf_counter()
     if method == "pardiso":
-        fac = pardiso.PardisoSPD(K, C if len(C) else None)
+        fac = pardiso.Pardiso(K, C if len(C) else None, mtype=2 if definite else -2)
         if len(C):
             def solve(f, solve_c):
                 y = fac.forward(f)
@@ -81,7 +83,7 @@ def schur_system(K: sp.spmatrix, C: np.ndarray, method: str = "auto") -> SchurSy
     R = np.setdiff1d(np.arange(K.shape[0]), C)
     KRR = K[R][:, R].tocsc()
     try:
-        lu = spla.splu(KRR, permc_spec="COLAMD")
+        lu = spla.splu(KRR, permc_spec="MMD_AT_PLUS_A")
     except RuntimeError as exc:  # singular
         raise GearfeError(f"stiffness matrix is singular ({exc}): a body is not supported") from None
     KRC = K[R][:, C].tocsc()

@@ -1,11 +1,13 @@
-"""Thin ctypes interface to MKL PARDISO for SPD matrices, with its Schur-complement mode.
+"""Thin ctypes interface to MKL PARDISO for symmetric matrices, with its Schur-complement mode.
 
 pypardiso (a declared dependency) locates and loads MKL's ``mkl_rt``; it exposes only the plain
 solve, so the library handle is reused here to call ``pardiso`` directly:
 
-    mtype = 2 (real SPD, upper triangle, 0-based CSR), METIS ordering.
+    mtype = 2 (real SPD) or -2 (real symmetric indefinite), upper triangle with every diagonal
+    entry stored, 0-based CSR, METIS ordering.
     Schur mode (iparm[35] = 1): rows marked in ``perm`` are eliminated last; phase 12 returns the
-    dense Schur complement  S = K_CC - K_CR K_RR^-1 K_RC  in ``x`` and keeps the partial factor.
+    dense Schur complement  S = K_CC - K_CR K_RR^-1 K_RC  in ``x`` and keeps the factor of K_RR
+    (mode 2 would also factor S, which fails when S is singular: a body free before contact).
     Phase 331 (forward substitution) of a right-hand side f leaves the condensed load
     f_C - K_CR K_RR^-1 f_R in the C rows; after the caller has solved S u_C = (that) and written
     u_C into the C rows, phase 333 (backward substitution) gives the whole solution.
@@ -23,7 +25,7 @@ import scipy.sparse as sp
 
 from tca.errors import GearfeError
 
-__all__ = ["available", "PardisoSPD"]
+__all__ = ["available", "Pardiso"]
 
 _P = ctypes.POINTER
 _I32 = ctypes.c_int32
@@ -63,20 +65,24 @@ def available() -> bool:
     return _PARDISO is not None
 
 
-class PardisoSPD:
-    """PARDISO factorization of an SPD matrix, optionally with a dense Schur complement on rows C."""
+class Pardiso:
+    """PARDISO factorization of a symmetric matrix (mtype 2: SPD, -2: indefinite), optional Schur rows."""
 
-    def __init__(self, K: sp.spmatrix, schur_rows: np.ndarray | None = None):
+    def __init__(self, K: sp.spmatrix, schur_rows: np.ndarray | None = None, mtype: int = 2):
         if _PARDISO is None:  # pragma: no cover
             raise GearfeError("MKL PARDISO is not available (pypardiso/mkl could not be loaded)")
-        U = sp.triu(K, format="csr")
+        U = sp.triu(K, format="coo")
+        n = U.shape[0]
+        # every diagonal entry must be stored, zeros included (the gap rows of a bordered matrix)
+        U = sp.coo_matrix((np.concatenate([U.data, np.zeros(n)]), (np.concatenate([U.row, np.arange(n)]),
+                           np.concatenate([U.col, np.arange(n)]))), shape=U.shape).tocsr()
+        U.sum_duplicates()
         U.sort_indices()
+        self.mtype = int(mtype)
         self.n = U.shape[0]
         self._a = np.ascontiguousarray(U.data, dtype=np.float64)
         self._ia = np.ascontiguousarray(U.indptr, dtype=np.int32)
         self._ja = np.ascontiguousarray(U.indices, dtype=np.int32)
-        if np.any(np.diff(self._ia) == 0):
-            raise GearfeError("stiffness matrix has an empty row: a DOF is not connected to any element")
         self._pt = np.zeros(64, np.int64)
         self._iparm = np.zeros(64, np.int32)
         ip = self._iparm
@@ -98,7 +104,7 @@ class PardisoSPD:
     def _call(self, phase: int, b: np.ndarray, x: np.ndarray, nrhs: int = 1):
         err = _I32(0)
         _PARDISO(self._pt.ctypes.data_as(_P(ctypes.c_int64)), ctypes.byref(_I32(1)), ctypes.byref(_I32(1)),
-                 ctypes.byref(_I32(2)), ctypes.byref(_I32(phase)), ctypes.byref(_I32(self.n)), self._a.ctypes.data,
+                 ctypes.byref(_I32(self.mtype)), ctypes.byref(_I32(phase)), ctypes.byref(_I32(self.n)), self._a.ctypes.data,
                  self._ia.ctypes.data_as(_P(_I32)), self._ja.ctypes.data_as(_P(_I32)), self._perm.ctypes.data_as(_P(_I32)),
                  ctypes.byref(_I32(nrhs)), self._iparm.ctypes.data_as(_P(_I32)), ctypes.byref(_I32(0)),
                  b.ctypes.data, x.ctypes.data, ctypes.byref(err))

@@ -244,8 +244,8 @@ def _rename(mesh: HexMesh, names: dict[str, str], keep_only: bool = False) -> He
 
 def spline_coupling(*, teeth: int = 3, pitch_deg: float = 30.0, tooth_deg: float = 12.0, gap_deg: float = 0.0,
                     radii=(40.0, 46.0, 56.0, 48.0, 52.0, 64.0), width: float = 20.0, crown_profile: float = 20.0,
-                    crown_lead: float = 400.0, backlash=(0.0, 0.002, 0.005), h: float = 0.08, fine_width: float = 0.8,
-                    growth: float = 1.25, h_max: float = 2.0, nz: int | None = None, fine_z: bool = True) -> HexMesh:
+                    crown_lead: float = 400.0, backlash=(0.0, 0.002, 0.005), h: float = 0.1, fine_width: float = 1.0,
+                    hz: float = 0.4, z_fine_width: float = 3.0, growth: float = 1.35, h_max: float = 2.5) -> HexMesh:
     """Hub with external teeth driving the internal teeth of a sleeve about the z axis (gear-like).
 
     radii = (hub bore R0, hub root R1, hub tip R2, sleeve tip Rt, contact radius rc, sleeve outer
@@ -254,6 +254,10 @@ def spline_coupling(*, teeth: int = 3, pitch_deg: float = 30.0, tooth_deg: float
     double-crowned: it recedes by (r - rc)^2 / (2 crown_profile) + (z - width/2)^2 / (2 crown_lead)
     [mm] plus backlash[k] [mm]. The facing sleeve flank is the radial plane theta_k + tooth/2 +
     gap. Contact starts at (rc, width/2) of tooth 0 and closes under a positive torque about +z.
+
+    Mesh: size h [mm] over ``fine_width`` around the contact in the profile (r) and depth
+    (theta) directions, hz over ``z_fine_width`` along the face width, growing by ``growth`` up to
+    h_max elsewhere.
 
     Face sets: ``hub/bore``, ``hub/tooth<k>/flank`` (drive flanks), ``hub/tooth<k>/fillet``
     (faces of the tooth root region on the loaded side); ``sleeve/outer``,
@@ -270,9 +274,7 @@ def spline_coupling(*, teeth: int = 3, pitch_deg: float = 30.0, tooth_deg: float
     centres = (np.arange(teeth) - (teeth - 1) / 2.0) * pitch
     flanks = centres + tw / 2  # hub drive flanks; sleeve flanks at + gap
     hs = h / rc  # angular size of the fine elements at the contact radius
-    if nz is None:
-        nz = max(2, int(round(width / (3 * h))))
-    z = graded(0.0, width, h, at=width / 2, width=fine_width * 3, growth=growth, h_max=h_max) if fine_z else np.linspace(0, width, nz + 1)
+    z = graded(0.0, width, hz, at=width / 2, width=z_fine_width, growth=growth, h_max=h_max)
 
     def angular_lines(lo, hi, marks, fine_at):
         """Theta lines on [lo, hi] through `marks`, fine near `fine_at`."""
