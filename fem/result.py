@@ -23,7 +23,9 @@ from tca.errors import InputError
 from .constraints import set_nodes
 from .model import FEModel
 
-__all__ = ["PairResult", "SolveInfo", "FEResult", "torque_balance_error"]
+__all__ = ["PairResult", "SolveInfo", "FEResult", "torque_balance_error", "STRESS_RECOVERY"]
+
+STRESS_RECOVERY = "2x2x2 Gauss-point stresses (incompatible modes included) extrapolated to the corner nodes, averaged over the cells of each node"
 
 
 @dataclass(frozen=True)
@@ -55,7 +57,6 @@ class SolveInfo:
     penalty_scale: float = 1.0
     penalty_change: float = float("nan")
     max_penetration: float = 0.0
-    factor_nnz: int = 0
     timings: dict = field(default_factory=dict)
 
 
@@ -129,6 +130,7 @@ class FEResult:
             "fillet": self.fillet_stress(),
             "solver": self.info.solver,
             "element": self.info.element,
+            "stress_recovery": STRESS_RECOVERY,
             "active_set_iterations": self.info.iterations,
             "penalty_scale": self.info.penalty_scale,
             "penalty_doubling_change": self.info.penalty_change,
