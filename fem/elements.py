@@ -71,10 +71,12 @@ def hex_geometry(points: np.ndarray, cells: np.ndarray, incompatible: bool) -> H
     """Gauss-point gradients (2x2x2) of VTK-ordered hexahedra, with the Taylor-corrected modes."""
     mesh = MeshHex(np.ascontiguousarray(points.T), np.ascontiguousarray(cells[:, SKFEM_FROM_VTK].T))
     basis = Basis(mesh, ElementHex1(), intorder=3)
+    detq = basis.mapping.detDF(basis.X)  # (m, q); basis.dx holds |det J| w
+    if np.any(detq <= 0.0):
+        bad = int(np.flatnonzero((detq <= 0.0).any(axis=1))[0])
+        raise InputError("mesh.cells", bad, "the index of a hexahedron with det J > 0 at all Gauss points (VTK node order)",
+                         "this cell is inverted or degenerate")
     dx = np.ascontiguousarray(basis.dx)  # (m, q)
-    if np.any(dx <= 0.0):
-        bad = int(np.flatnonzero((dx <= 0.0).any(axis=1))[0])
-        raise InputError("mesh.cells", bad, "hexahedra with positive Jacobian at all Gauss points (VTK node order)")
     m, q = dx.shape
     nf = 11 if incompatible else 8
     g = np.empty((m, q, nf, 3))
@@ -85,7 +87,6 @@ def hex_geometry(points: np.ndarray, cells: np.ndarray, incompatible: bool) -> H
         centre = np.full((3, 1), 0.5)
         inv0 = basis.mapping.invDF(centre)[..., 0]  # (3, 3, m): d xi_k / d x_i
         det0 = basis.mapping.detDF(centre)[:, 0]  # (m,)
-        detq = basis.mapping.detDF(xq)  # (m, q)
         dP = -4.0 * (2.0 * xq - 1.0)  # (3, q): dP_k/dxi_k, other derivatives vanish
         # grad_x P_k = (det0/detq) * sum_k' invDF0[k', i] dP_k/dxi_k' = ratio * inv0[k, i] * dP_k
         ratio = det0[:, None] / detq  # (m, q)

@@ -138,15 +138,9 @@ def gear_like(torque: float = 5e5, mesh_kw: dict | None = None, solver: str = "a
     Returns (mesh, model, {torque}); the sleeve's reaction torque about z is -torque exactly.
     """
     mesh = prim.spline_coupling(backlash=backlash, **(mesh_kw or {}))
-    rc = 52.0 if not mesh_kw or "radii" not in mesh_kw else mesh_kw["radii"][4]
     pairs = []
     for k in range(3):
-        cp = None
-        if contact_point:
-            pts = mesh.points[mesh.face_set_points(f"hub/tooth{k}/flank")]
-            r = np.hypot(pts[:, 0], pts[:, 1])
-            mid = np.abs(pts[:, 2] - np.median(pts[:, 2]))
-            cp = tuple(pts[np.argmin(np.abs(r - rc) + mid)])
+        cp = tuple(mesh.points[mesh.point_sets[f"hub/tooth{k}/contact_point"][0]]) if contact_point else None
         pairs.append(ContactPair(f"hub/tooth{k}/flank", f"sleeve/tooth{k}/flank", name=f"hub/tooth{k}", group="hub",
                                  search_gap=search_gap, contact_point=cp))
     model = FEModel(

@@ -261,8 +261,8 @@ def spline_coupling(*, teeth: int = 3, pitch_deg: float = 30.0, tooth_deg: float
 
     Face sets: ``hub/bore``, ``hub/tooth<k>/flank`` (drive flanks), ``hub/tooth<k>/fillet``
     (faces of the tooth root region on the loaded side); ``sleeve/outer``,
-    ``sleeve/tooth<k>/flank``, ``sleeve/tooth<k>/fillet``. Reference point ``hub`` at the origin,
-    axis z.
+    ``sleeve/tooth<k>/flank``, ``sleeve/tooth<k>/fillet``. Point set ``hub/tooth<k>/contact_point``:
+    the flank node at (rc, width/2). Reference point ``hub`` at the origin, axis z.
     """
     R0, R1, R2, Rt, rc, R4 = radii
     R3 = R2 + (Rt - R1)  # sleeve root: the same radial clearance as at the hub root
@@ -349,4 +349,11 @@ def spline_coupling(*, teeth: int = 3, pitch_deg: float = 30.0, tooth_deg: float
             sets[f"{name}/tooth{k}/fillet"] = bf[root & ~flank]
     hub = with_face_sets(hub, {k: v for k, v in sets.items() if k.startswith("hub/")})
     sleeve = with_face_sets(sleeve, {k: v for k, v in sets.items() if k.startswith("sleeve/")})
+    # the nominal contact point of each tooth (flank node nearest to r = rc, z = width / 2), as TCA gives it
+    nominal = {}
+    for k in range(teeth):
+        nodes = hub.face_set_points(f"hub/tooth{k}/flank")
+        p = hub.points[nodes]
+        nominal[f"hub/tooth{k}/contact_point"] = nodes[[np.argmin(np.abs(np.hypot(p[:, 0], p[:, 1]) - rc) + np.abs(p[:, 2] - width / 2))]]
+    hub = dataclasses.replace(hub, point_sets=nominal)
     return with_reference(combine(hub, sleeve), "hub", (0.0, 0.0, 0.0))
