@@ -84,7 +84,7 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
     t["reduction_s"] = time.perf_counter() - t1
 
     t1 = time.perf_counter()
-    cs = contact_set(mesh, model.contacts, E_c, model.contact.penalty_factor) if model.contacts else None
+    cs = contact_set(mesh, model.contacts, E_c, model.contact.penalty_factor, model.contact.quadrature) if model.contacts else None
     cand = np.flatnonzero(cs.candidate) if cs is not None else np.zeros(0, np.int64)
     k = len(cand)
     n_r = red.n
@@ -134,7 +134,7 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
     u = red.expand(q)
     uf = u.ravel()
 
-    lam_all = np.zeros(len(cs.node)) if cs is not None else np.zeros(0)
+    lam_all = np.zeros(len(cs.area)) if cs is not None else np.zeros(0)
     if cs is not None:
         lam_all[cand] = sol.lam
         gap_all = cs.gap0 + cs.G @ uf
@@ -142,9 +142,8 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
         if outside.any():
             worst = int(np.argmin(np.where(outside, gap_all, np.inf)))
             pair = model.contacts[cs.pair[worst]]
-            raise ConvergenceError(
-                f"contact of pair {pair.name!r}", f"node {int(cs.node[worst])} outside the candidate set (raise search_gap = {pair.search_gap} mm)",
-                float(-gap_all[worst]), sol.iterations)
+            where = f"point {np.round(cs.point[worst], 4).tolist()} outside the candidate set (raise search_gap = {pair.search_gap} mm)"
+            raise ConvergenceError(f"contact of pair {pair.name!r}", where, float(-gap_all[worst]), sol.iterations)
 
     t1 = time.perf_counter()
     sq = st.gauss_stress(em.geometry, mesh.cells, u, em.condensation, lam_c, mu_c)
@@ -159,16 +158,18 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
     pairs = []
     if cs is not None:
         r -= cs.G.T @ lam_all
+        # nodal pressure = consistent normal nodal force / tributary area (sum over the points)
         p_all = lam_all / cs.area
-        np.maximum.at(pressure, cs.node, p_all)
-        gap_nodes[cs.node] = gap_all
+        pressure = np.nan_to_num(cs.to_nodes(p_all, mesh.n_points))
+        gap_nodes = cs.to_nodes(gap_all, mesh.n_points)
         for ip, pair in enumerate(model.contacts):
-            sel = cs.pair == ip
-            act = sel & (lam_all > 0.0)
+            sel = np.flatnonzero(cs.pair == ip)
+            act = sel[lam_all[sel] > 0.0]
             fv = (cs.normal[sel] * lam_all[sel, None]).sum(axis=0)
+            p_pair = cs.to_nodes(p_all, mesh.n_points, rows=sel)
             pairs.append(PairResult(pair.name, pair.group, float(lam_all[sel].sum()), tuple(float(x) for x in fv),
-                                    float(cs.area[act].sum()), float(p_all[sel].max(initial=0.0)), int(act.sum()),
-                                    int((sel & cs.candidate).sum())))
+                                    float(cs.area[act].sum()), float(np.nanmax(p_pair, initial=0.0)), len(act),
+                                    int(cs.candidate[sel].sum())))
     reaction = np.zeros((mesh.n_points, 3))
     held = np.unique(np.concatenate(list(red.support_nodes.values())))
     reaction[held] = r.reshape(-1, 3)[held]

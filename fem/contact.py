@@ -1,16 +1,26 @@
-"""Node-to-surface penalty contact, solved on the Schur complement of the contact DOFs.
+"""Penalty contact between slave and master surfaces, solved on the Schur complement of the gaps.
 
-Geometry (small sliding, from the undeformed, TCA-positioned mesh). Each slave node x_s is
-projected on the bilinear master faces, x_p = sum_a N_a(xi, eta) x_a, with the outward master
-normal n. The linearized normal gap and its gradient G (one row per slave node) are
+Geometry (small sliding, from the undeformed, TCA-positioned mesh). A point x_s of the slave
+surface is projected on the bilinear master faces, x_p = sum_b N_b(xi, eta) x_b, with the outward
+master normal n; its linearized normal gap is
 
-    g = g0 + n . (u_s - sum_a N_a u_a),    g0 = (x_s - x_p) . n,
+    g = g0 + n . (u(x_s) - sum_b N_b u_b),    g0 = (x_s - x_p) . n.
 
-and a compressive nodal contact force lambda >= 0 acts as G^T lambda. The penalty law is
-lambda = k <-g>, k = eps A_s: A_s the slave node's tributary area (integral of its shape
-function over the slave faces), eps = factor * E / h [MPa/mm] with h the thickness of the slave
-element under the node: the penalty is ``factor`` times the normal stiffness of that element.
-The nodal pressure is p = lambda / A_s and the penetration of an active node is p / eps.
+One constraint per slave node a, with a compressive normal force lambda_a >= 0 acting as
+G^T lambda (G the gradient of the gaps):
+
+- ``quadrature = 0``, node-to-surface: x_s is the node, g_a its gap, A_a its tributary area
+  (integral of its shape function over the slave faces).
+- ``quadrature = n`` (default 2), segment-to-segment with Gauss integration: the gap is averaged
+  over the node's faces, g_a = int N_a g dA / A_a, evaluated at n x n Gauss points per face,
+  each projected on the master. On non-matching meshes this removes most of the node-to-surface
+  pressure oscillation (measured on Hertz line contact, master/slave face sizes 0.67: peak error
+  +10 % node-to-surface, +2 % averaged); a residual +-4 % ripple remains because the master faces
+  are not segmented. The master must be about as fine as the slave (``MAX_MASTER_COARSENESS``).
+
+The penalty law is lambda_a = k_a <-g_a>, k_a = eps A_a, eps = factor * E / h [MPa/mm] with h the
+thickness of the slave element under the node: the penalty is ``factor`` times the normal
+stiffness of that element. The nodal pressure is p_a = lambda_a / A_a, the penetration p_a / eps.
 
 Reduced problem. With the stiffness factored once and condensed on the candidate contact DOFs
 C' and the free rigid DOFs F (``fem.linsolve``), S u_C = f~_C + G_C^T lambda, and eliminating
@@ -55,23 +65,33 @@ _OPPOSITE = np.array([1, 0, 4, 5, 2, 3])
 
 @dataclass(frozen=True, eq=False)
 class ContactSet:
-    """All slave nodes of all pairs that project on their master surface."""
+    """Contact points of all pairs (slave nodes or slave Gauss points) projected on their masters."""
 
     pair: np.ndarray  # (k,) index into the model's contact pairs
-    node: np.ndarray  # (k,) slave node
-    area: np.ndarray  # (k,) tributary area [mm^2]
-    normal: np.ndarray  # (k, 3) outward master normal
-    point: np.ndarray  # (k, 3) projection on the master surface [mm]
+    slave_nodes: np.ndarray  # (k, s) slave nodes of each contact point (s = 1: node, 4: Gauss point)
+    slave_weights: np.ndarray  # (k, s) their shape-function values at the contact point
+    point: np.ndarray  # (k, 3) contact point on the slave surface [mm]
+    area: np.ndarray  # (k,) area it stands for [mm^2]
+    normal: np.ndarray  # (k, 3) outward master normal at the projection
     gap0: np.ndarray  # (k,) initial normal gap [mm]
     penalty: np.ndarray  # (k,) eps [MPa/mm]
     G: sp.csr_matrix  # (k, 3n) gap gradient
-    candidate: np.ndarray  # (k,) bool, gap0 < search_gap
+    candidate: np.ndarray  # (k,) bool, gap0 < search_gap, or seed
     seed: np.ndarray  # (k,) bool, initial active set
 
     @property
     def stiffness(self) -> np.ndarray:
-        """Penalty stiffness eps * A per node [N/mm]."""
+        """Penalty stiffness eps * A per contact point [N/mm]."""
         return self.penalty * self.area
+
+    def to_nodes(self, values: np.ndarray, n_nodes: int, rows=None) -> np.ndarray:
+        """Area-weighted nodal average of per-point values over the slave nodes (nan where none)."""
+        rows = np.arange(len(self.area)) if rows is None else rows
+        w = self.slave_weights[rows] * self.area[rows, None]
+        num = np.bincount(self.slave_nodes[rows].ravel(), weights=(w * values[rows, None]).ravel(), minlength=n_nodes)
+        den = np.bincount(self.slave_nodes[rows].ravel(), weights=w.ravel(), minlength=n_nodes)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return np.where(den > 0, num / den, np.nan)
 
 
 def _faces(mesh: HexMesh, name: str, field: str) -> np.ndarray:
@@ -111,8 +131,64 @@ def _project(xs: np.ndarray, X: np.ndarray, iters: int = 12):
     return xi, eta, np.einsum("pa,pai->pi", N, X)
 
 
-def contact_set(mesh: HexMesh, pairs: tuple[ContactPair, ...], E_cell: np.ndarray, factor: float) -> ContactSet:
-    """Project the slave nodes of every pair on its master faces; gaps, normals, areas, penalties."""
+def _slave_points(mesh: HexMesh, fs: np.ndarray, order: int):
+    """Contact points of slave faces: nodes (order 0) or order x order Gauss points per face.
+
+    Returns slave nodes (k, s), weights (k, s), points (k, 3), areas (k,), outward slave normals
+    (k, 3) and thickness h (k,) of the slave element below [mm].
+    """
+    sf = mesh.cells[fs[:, 0][:, None], HEX_FACES[fs[:, 1]]]  # (f, 4)
+    X = mesh.points[sf]
+    opp = mesh.cells[fs[:, 0][:, None], HEX_FACES[_OPPOSITE[fs[:, 1]]]]
+    h_face = np.linalg.norm(X.mean(1) - mesh.points[opp].mean(1), axis=1)
+    if order == 0:
+        nodes, inv = np.unique(sf, return_inverse=True)
+        inv = inv.ravel()
+        w = face_node_areas(mesh.points, sf).ravel()
+        area = np.bincount(inv, weights=w, minlength=len(nodes))
+        fn = np.cross(X[:, 2] - X[:, 0], X[:, 3] - X[:, 1])  # area-weighted outward normal
+        ns = np.stack([np.bincount(inv, weights=np.repeat(fn[:, c], 4), minlength=len(nodes)) for c in range(3)], 1)
+        h = np.bincount(inv, weights=w * np.repeat(h_face, 4), minlength=len(nodes)) / area
+        return nodes[:, None], np.ones((len(nodes), 1)), mesh.points[nodes], area, ns / np.linalg.norm(ns, axis=1, keepdims=True), h
+    g, wg = np.polynomial.legendre.leggauss(order)
+    xi, eta = (a.ravel() for a in np.meshgrid(g, g, indexing="ij"))
+    wq = np.outer(wg, wg).ravel()
+    N, dxi, deta = _bilinear(xi, eta)  # (q, 4)
+    pts = np.einsum("qa,fai->fqi", N, X)
+    n = np.cross(np.einsum("qa,fai->fqi", dxi, X), np.einsum("qa,fai->fqi", deta, X))
+    dA = np.linalg.norm(n, axis=-1)
+    q = len(wq)
+    return (np.repeat(sf, q, axis=0), np.tile(N, (len(sf), 1)), pts.reshape(-1, 3), (dA * wq).ravel(),
+            (n / dA[..., None]).reshape(-1, 3), np.repeat(h_face, q))
+
+
+MAX_MASTER_COARSENESS = 1.3
+
+
+def _check_master_resolution(mesh, pair, fs, fm):
+    """Refuse a master surface much coarser than the slave in the contact zone (faces fs, fm).
+
+    With one constraint per slave node, a fine slave on a coarse master over-constrains the
+    master and the pressure oscillates (measured, Hertz point contact, 2x2 averaged gaps: peak
+    +2 % at a master/slave face-size ratio of 1.25, +7 % at 1.5, +29 % at 2).
+    """
+    if len(fs) == 0 or len(fm) == 0:
+        return
+    size_s = np.sqrt(face_node_areas(mesh.points, mesh.cells[fs[:, 0][:, None], HEX_FACES[fs[:, 1]]]).sum(1))
+    size_m = np.sqrt(face_node_areas(mesh.points, mesh.cells[fm[:, 0][:, None], HEX_FACES[fm[:, 1]]]).sum(1))
+    ratio = float(np.median(size_m) / np.median(size_s))
+    if ratio > MAX_MASTER_COARSENESS:
+        raise InputError(f"contacts[{pair.name!r}]", (pair.slave, pair.master),
+                         f"a master surface about as fine as the slave in the contact zone (face-size ratio <= {MAX_MASTER_COARSENESS})",
+                         f"measured {ratio:.2f}: exchange slave and master, or refine the master")
+
+
+def contact_set(mesh: HexMesh, pairs: tuple[ContactPair, ...], E_cell: np.ndarray, factor: float, order: int = 2) -> ContactSet:
+    """Project the contact points of every pair on its master faces; gaps, normals, areas, penalties.
+
+    order 0: node-to-surface (slave nodes, tributary areas); order n >= 1: n x n Gauss points per
+    slave face (Gauss-point-to-surface), each carrying its share of the face area.
+    """
     parts = []
     n_dof = 3 * mesh.n_points
     for ip, pair in enumerate(pairs):
@@ -121,67 +197,69 @@ def contact_set(mesh: HexMesh, pairs: tuple[ContactPair, ...], E_cell: np.ndarra
         sb, mb = mesh.cell_body[fs[:, 0]], mesh.cell_body[fm[:, 0]]
         if len(np.unique(sb)) != 1 or len(np.unique(mb)) != 1 or sb[0] == mb[0]:
             raise InputError(f"contacts[{pair.name!r}]", (pair.slave, pair.master), "slave and master face sets each on one body, two different bodies")
-        sf_nodes = mesh.cells[fs[:, 0][:, None], HEX_FACES[fs[:, 1]]]
-        nodes, inv = np.unique(sf_nodes, return_inverse=True)
-        inv = inv.reshape(-1, 4)
-        w = face_node_areas(mesh.points, sf_nodes)
-        area = np.bincount(inv.ravel(), weights=w.ravel(), minlength=len(nodes))
-        Xs = mesh.points[sf_nodes]
-        fn = np.cross(Xs[:, 2] - Xs[:, 0], Xs[:, 3] - Xs[:, 1])  # area-weighted outward normal
-        ns = np.zeros((len(nodes), 3))
-        for c in range(3):
-            ns[:, c] = np.bincount(inv.ravel(), weights=np.repeat(fn[:, c], 4), minlength=len(nodes))
-        ns /= np.linalg.norm(ns, axis=1, keepdims=True)
-        # thickness of the slave element below each face, averaged per node (area-weighted)
-        opp = mesh.cells[fs[:, 0][:, None], HEX_FACES[_OPPOSITE[fs[:, 1]]]]
-        h_face = np.linalg.norm(Xs.mean(1) - mesh.points[opp].mean(1), axis=1)
-        h = np.bincount(inv.ravel(), weights=(w * h_face[:, None]).ravel(), minlength=len(nodes)) / area
+        snodes, sw, xs0, area, ns, h = _slave_points(mesh, fs, order)
         E = min(E_cell[fs[:, 0]].min(), E_cell[fm[:, 0]].min())
         # projection on the master faces: nearest face centres first
         mf_nodes = mesh.cells[fm[:, 0][:, None], HEX_FACES[fm[:, 1]]]
         Xm = mesh.points[mf_nodes]
+        npt = len(xs0)
         kq = min(12, len(fm))
-        _, cand = cKDTree(Xm.mean(1)).query(mesh.points[nodes], k=kq)
-        cand = cand.reshape(len(nodes), kq)
-        xs = np.repeat(mesh.points[nodes], kq, axis=0)
+        _, cand = cKDTree(Xm.mean(1)).query(xs0, k=kq)
+        cand = cand.reshape(npt, kq)
+        xs = np.repeat(xs0, kq, axis=0)
         xi, eta, xp = _project(xs, Xm[cand.ravel()])
         inside = (np.abs(xi) <= 1.0 + 1e-6) & (np.abs(eta) <= 1.0 + 1e-6)
-        d = np.where(inside, np.linalg.norm(xs - xp, axis=1), np.inf).reshape(len(nodes), kq)
+        d = np.where(inside, np.linalg.norm(xs - xp, axis=1), np.inf).reshape(npt, kq)
         best = np.argmin(d, axis=1)
-        sel = np.arange(len(nodes)) * kq + best
-        ok = np.isfinite(d[np.arange(len(nodes)), best])
+        sel = np.arange(npt) * kq + best
+        ok = np.isfinite(d[np.arange(npt), best])
         face = cand.ravel()[sel]
         N, dxi, deta = _bilinear(xi[sel], eta[sel])
-        t1 = np.einsum("pa,pai->pi", dxi, Xm[face])
-        t2 = np.einsum("pa,pai->pi", deta, Xm[face])
-        nm = np.cross(t1, t2)
+        nm = np.cross(np.einsum("pa,pai->pi", dxi, Xm[face]), np.einsum("pa,pai->pi", deta, Xm[face]))
         nm /= np.linalg.norm(nm, axis=1, keepdims=True)
         ok &= np.einsum("ij,ij->i", nm, ns) < -0.5  # the surfaces face each other
-        g0 = np.einsum("ij,ij->i", mesh.points[nodes] - xp[sel], nm)
+        g0 = np.einsum("ij,ij->i", xs0 - xp[sel], nm)
         keep = np.flatnonzero(ok)
-        seed = np.zeros(len(keep), bool)
-        if pair.contact_point is not None:
-            dist = np.linalg.norm(mesh.points[nodes[keep]] - np.asarray(pair.contact_point), axis=1)
-            seed[dist <= max(pair.contact_radius, dist.min() if len(dist) else 0.0)] = True
-        elif len(keep):
-            seed[g0[keep] <= g0[keep].min() + 1e-9] = True
-        parts.append(dict(pair=np.full(len(keep), ip), node=nodes[keep], area=area[keep], normal=nm[keep], point=xp[sel][keep],
-                          gap0=g0[keep], penalty=factor * E / h[keep], mnodes=mf_nodes[face[keep]], N=N[keep],
-                          candidate=g0[keep] < pair.search_gap, seed=seed))
-    cat = {k: np.concatenate([p[k] for p in parts]) if parts else np.zeros(0) for k in
-           ("pair", "node", "area", "gap0", "penalty", "candidate", "seed")}
-    normal = np.concatenate([p["normal"] for p in parts]) if parts else np.zeros((0, 3))
-    point = np.concatenate([p["point"] for p in parts]) if parts else np.zeros((0, 3))
-    mnodes = np.concatenate([p["mnodes"] for p in parts]) if parts else np.zeros((0, 4), np.int64)
-    Nm = np.concatenate([p["N"] for p in parts]) if parts else np.zeros((0, 4))
-    k = len(cat["node"])
-    node = cat["node"].astype(np.int64)
-    rows = np.concatenate([np.repeat(np.arange(k), 3), np.repeat(np.arange(k), 12)])
-    cols = np.concatenate([(3 * node[:, None] + np.arange(3)).ravel(), (3 * mnodes[:, :, None] + np.arange(3)).ravel()])
-    vals = np.concatenate([normal.ravel(), (-Nm[:, :, None] * normal[:, None, :]).ravel()])
-    G = sp.csr_matrix((vals, (rows, cols)), shape=(k, n_dof))
-    return ContactSet(cat["pair"].astype(np.int64), node, cat["area"], normal, point, cat["gap0"], cat["penalty"], G,
-                      cat["candidate"].astype(bool), cat["seed"].astype(bool))
+        zone = keep[g0[keep] < pair.search_gap]
+        if order:
+            zone_slave = np.unique(zone // (order * order))  # Gauss points are stored face by face
+        else:
+            sf = mesh.cells[fs[:, 0][:, None], HEX_FACES[fs[:, 1]]]
+            zone_slave = np.flatnonzero(np.isin(sf, snodes[zone, 0]).any(axis=1))
+        _check_master_resolution(mesh, pair, fs[zone_slave], fm[np.unique(face[zone])])
+        snodes, sw, xs0, area, nm, g0 = snodes[keep], sw[keep], xs0[keep], area[keep], nm[keep], g0[keep]
+        eps = factor * E / h[keep]
+        mnodes, N = mf_nodes[face[keep]], N[keep]
+        rows = np.repeat(np.arange(len(keep)), 3 * (snodes.shape[1] + 4))
+        cols = np.concatenate([3 * snodes[:, :, None] + np.arange(3), 3 * mnodes[:, :, None] + np.arange(3)], axis=1).ravel()
+        vals = np.concatenate([sw[:, :, None] * nm[:, None, :], -N[:, :, None] * nm[:, None, :]], axis=1).ravel()
+        G = sp.csr_matrix((vals, (rows, cols)), shape=(len(keep), n_dof))
+        if order > 0:
+            # averaged gap per slave node: g_a = int N_a g dA / int N_a dA over the Gauss points
+            nodes, inv = np.unique(snodes, return_inverse=True)
+            M = sp.csr_matrix(((sw * area[:, None]).ravel(), (inv.ravel(), np.repeat(np.arange(len(keep)), 4))),
+                              shape=(len(nodes), len(keep)))
+            A = np.asarray(M.sum(axis=1)).ravel()
+            Dinv = sp.diags(1.0 / A)
+            G = (Dinv @ M @ G).tocsr()
+            g0, eps = Dinv @ (M @ g0), Dinv @ (M @ eps)
+            nm = Dinv @ (M @ nm)
+            nm /= np.linalg.norm(nm, axis=1, keepdims=True)
+            snodes, sw, xs0, area = nodes[:, None], np.ones((len(nodes), 1)), mesh.points[nodes], A
+        seed = np.zeros(len(g0), bool)
+        if len(g0) and pair.contact_point is not None:
+            dist = np.linalg.norm(xs0 - np.asarray(pair.contact_point), axis=1)
+            seed[dist <= max(pair.contact_radius, dist.min())] = True
+        elif len(g0):
+            seed[g0 <= g0.min() + 1e-9] = True
+        parts.append(dict(pair=np.full(len(g0), ip), snodes=snodes, sw=sw, point=xs0, area=area, normal=nm, gap0=g0,
+                          penalty=eps, G=G, candidate=(g0 < pair.search_gap) | seed, seed=seed))
+    shapes = {"pair": (0,), "snodes": (0, 1), "sw": (0, 1), "point": (0, 3), "area": (0,), "normal": (0, 3), "gap0": (0,),
+              "penalty": (0,), "candidate": (0,), "seed": (0,)}
+    cat = {key: np.concatenate([p[key] for p in parts]) if parts else np.zeros(shp) for key, shp in shapes.items()}
+    G = sp.vstack([p["G"] for p in parts], format="csr") if parts else sp.csr_matrix((0, n_dof))
+    return ContactSet(cat["pair"].astype(np.int64), cat["snodes"].astype(np.int64), cat["sw"], cat["point"], cat["area"],
+                      cat["normal"], cat["gap0"], cat["penalty"], G, cat["candidate"].astype(bool), cat["seed"].astype(bool))
 
 
 @dataclass(frozen=True, eq=False)

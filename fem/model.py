@@ -168,8 +168,10 @@ class ContactPair:
 class ContactOptions:
     """Penalty and active-set settings.
 
-    The penalty per unit area is ``penalty_factor * E / h`` [MPa/mm], h the thickness of the
-    slave element under the node. ``max_penetration`` [mm] bounds the penalty penetration;
+    Contact constraints are one per slave node. ``quadrature`` = 0: the node's own gap
+    (node-to-surface); n = 2, 3, 4: the gap averaged over the node's faces with n x n Gauss points
+    each (segment-to-segment; smooth pressure on non-matching meshes). The penalty per unit area is
+    ``penalty_factor * E / h`` [MPa/mm], h the thickness of the slave element under the point. ``max_penetration`` [mm] bounds the penalty penetration;
     ``penalty_check`` re-solves with the penalty doubled and requires the peak pressure to change
     by less than ``penalty_check_tol`` (relative).
     """
@@ -179,8 +181,12 @@ class ContactOptions:
     max_iterations: int = 60
     penalty_check: bool = True
     penalty_check_tol: float = 0.01
+    quadrature: int = 2
 
     def __post_init__(self):
+        if self.quadrature not in (0, 2, 3, 4):
+            raise InputError("contact.quadrature", self.quadrature, "0 (slave nodes) or 2, 3, 4 (n x n Gauss points per slave face)",
+                             "one point per face leaves the averaged gaps of neighbouring nodes dependent")
         if not (self.penalty_factor > 0.0 and math.isfinite(self.penalty_factor)):
             raise InputError("contact.penalty_factor", self.penalty_factor, "a factor > 0 (penalty = factor * E / h)")
         if not (self.max_penetration > 0.0):

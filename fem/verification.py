@@ -32,13 +32,18 @@ def _estar(mat: Material) -> float:
 
 
 def hertz_line(radius: float = 20.0, p0: float = 1000.0, elements_per_halfwidth: float = 10.0, growth: float = 1.2,
-               solver: str = "auto", element: str = "hex8i", mat: Material = STEEL):
-    """Plane-strain slice of half a cylinder on a block: (mesh, model, {a, p0, load_per_length, thickness})."""
+               solver: str = "auto", element: str = "hex8i", mat: Material = STEEL, block_ratio: float = 0.8,
+               options: ContactOptions | None = None):
+    """Plane-strain slice of half a cylinder on a block: (mesh, model, {a, p0, load_per_length, thickness}).
+
+    The block's fine elements are ``block_ratio`` times the cylinder's: the nodes of the two
+    surfaces do not coincide, as on gear flanks.
+    """
     Es = _estar(mat)
     P = p0**2 * np.pi * radius / Es  # load per unit length giving the peak p0
     a = np.sqrt(4 * P * radius / (np.pi * Es))
     h = a / elements_per_halfwidth
-    mesh = prim.cylinder_on_block(radius, h, 1.5 * a, growth=growth)
+    mesh = prim.cylinder_on_block(radius, h, 1.5 * a, growth=growth, block_h=block_ratio * h)
     t = h  # slice thickness: one element
     z = (2,)
     model = FEModel(
@@ -48,18 +53,21 @@ def hertz_line(radius: float = 20.0, p0: float = 1000.0, elements_per_halfwidth:
             Body("block", (Fixed("block/bottom"), Fixed("block/sym", (0,)), Fixed("block/front", z), Fixed("block/back", z)), mat),
         ),
         contacts=(ContactPair("roller/surface", "block/top", search_gap=0.05 * a),),
+        contact=options or ContactOptions(),
         solver=SolverOptions(solver=solver, element=element),
     )
     return mesh, model, {"a": a, "p0": 2 * P / (np.pi * a), "load_per_length": P, "thickness": t, "force": P * t / 2}
 
 
 def hertz_point(radius: float = 20.0, p0: float = 1500.0, elements_per_radius: float = 6.0, growth: float = 1.5,
-                size: float = 5.0, solver: str = "auto", element: str = "hex8i", mat: Material = STEEL):
-    """Quarter of a spherical cap on a block: (mesh, model, {a, p0, load})."""
+                size: float = 5.0, solver: str = "auto", element: str = "hex8i", mat: Material = STEEL,
+                block_ratio: float = 0.8, options: ContactOptions | None = None):
+    """Quarter of a spherical cap on a block: (mesh, model, {a, p0, load}); non-coincident surface nodes."""
     Es = _estar(mat)
     a = np.pi * radius * p0 / (2 * Es)
     P = 2 * np.pi * a**2 * p0 / 3
-    mesh = prim.sphere_on_block(radius, a / elements_per_radius, 1.3 * a, growth=growth, size=size)
+    h = a / elements_per_radius
+    mesh = prim.sphere_on_block(radius, h, 1.3 * a, growth=growth, size=size, block_h=block_ratio * h)
     model = FEModel(
         bodies=(
             Body("cap", (Rigid("cap/top", "cap", free=("uz",), force=(0.0, 0.0, -P / 4)), Fixed("cap/symx", (0,)),
@@ -67,6 +75,7 @@ def hertz_point(radius: float = 20.0, p0: float = 1500.0, elements_per_radius: f
             Body("block", (Fixed("block/bottom"), Fixed("block/symx", (0,)), Fixed("block/symy", (1,))), mat),
         ),
         contacts=(ContactPair("cap/surface", "block/top", search_gap=0.1 * a),),
+        contact=options or ContactOptions(),
         solver=SolverOptions(solver=solver, element=element),
     )
     return mesh, model, {"a": (3 * P * radius / (4 * Es)) ** (1 / 3), "p0": p0, "load": P}

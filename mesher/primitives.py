@@ -52,22 +52,22 @@ def graded(a: float, b: float, h: float, *, at: float | None = None, width: floa
     if not (b > a and h > 0.0 and growth >= 1.0):
         raise InputError("graded", (a, b, h, growth), "a < b, h > 0, growth >= 1")
     at = a if at is None else float(np.clip(at, a, b))
+    # a fine point within h/2 of an end moves to that end: no sliver element there
+    at = a if at - a < 0.5 * h else (b if b - at < 0.5 * h else at)
     h_max = (b - a) if h_max is None else h_max
 
     def side(length: float) -> np.ndarray:
+        """Offsets 0 .. length: fine sizes over `width`, then geometric; scaled by the factor nearest 1."""
         if length <= 1e-12 * (b - a):
             return np.zeros(1)
-        n_fine = int(np.ceil(min(width, length) / h - 1e-9))
-        x = list(np.arange(n_fine + 1) * h)
-        if x[-1] >= length - 0.25 * h:
-            x = list(np.linspace(0.0, length, max(n_fine, 1) + 1))
-            return np.asarray(x)
-        start, size, sizes = x[-1], h, []
-        while start + sum(sizes) < length - 1e-12:
-            size = min(size * growth, h_max)
-            sizes.append(size)
-        sizes = np.asarray(sizes) * (length - start) / sum(sizes)
-        return np.concatenate([x, start + np.cumsum(sizes)])
+        sizes = [h] * max(1, int(np.ceil(min(width, length) / h - 1e-9)))
+        while sum(sizes) < length:
+            sizes.append(min(sizes[-1] * growth, max(h_max, h)))
+        sizes = np.asarray(sizes)
+        # end exactly at `length`: shrink all N sizes, or drop the last and stretch the others
+        options = [sizes] + ([sizes[:-1]] if len(sizes) > 1 else [])
+        best = min(options, key=lambda s_: abs(np.log(length / s_.sum())))
+        return np.concatenate([[0.0], np.cumsum(best * (length / best.sum()))])
 
     left = at - side(at - a)[::-1]
     right = at + side(b - at)
@@ -178,12 +178,13 @@ def _face_centres_normals(mesh: HexMesh, faces: np.ndarray):
 
 
 def cylinder_on_block(radius: float, h: float, fine_width: float, *, growth: float = 1.2, thickness: float | None = None,
-                      inner: float = 0.5, block_size: float | None = None) -> HexMesh:
+                      inner: float = 0.5, block_size: float | None = None, block_h: float | None = None) -> HexMesh:
     """Plane-strain slice of half a cylinder (x >= 0) resting on a block, touching at the origin.
 
     Bodies ``roller`` (annular sector, radius [mm], inner radius ``inner * radius``) and ``block``
     (x in [0, L], y in [-L, 0]); both graded to size h [mm] over ``fine_width`` [mm] from the
-    contact line x = 0, and in depth. One element through the thickness (z). Reference point
+    contact line x = 0, and in depth (the block to ``block_h``, default h: the two surfaces' nodes
+    do not coincide unless block_h = h). One element through the thickness (z). Reference point
     ``roller`` at the cylinder centre. Face sets: ``roller/surface`` (r = R), ``roller/inner``,
     ``roller/sym`` (x = 0), ``roller/front``/``back`` (z faces); ``block/top``, ``block/bottom``,
     ``block/sym``, ``block/front``/``back``.
@@ -197,19 +198,21 @@ def cylinder_on_block(radius: float, h: float, fine_width: float, *, growth: flo
     theta = -0.5 * np.pi + s / radius
     roller = cylinder_segment("roller", r, theta, z, center=(0.0, radius))
     roller = _rename(roller, {"rmax": "surface", "rmin": "inner", "tmin": "sym", "zmin": "back", "zmax": "front", "tmax": "side"})
-    x = graded(0.0, L, h, width=fine_width, growth=growth)
-    y = -graded(0.0, L, h, width=fine_width, growth=growth)[::-1]
+    hb = h if block_h is None else block_h
+    x = graded(0.0, L, hb, width=fine_width, growth=growth)
+    y = -graded(0.0, L, hb, width=fine_width, growth=growth)[::-1]
     blk = box("block", x, y, z)
     blk = _rename(blk, {"ymax": "top", "ymin": "bottom", "xmin": "sym", "zmin": "back", "zmax": "front", "xmax": "side"})
     return with_reference(combine(roller, blk), "roller", (0.0, radius, 0.0))
 
 
-def sphere_on_block(radius: float, h: float, fine_width: float, *, growth: float = 1.3, size: float | None = None) -> HexMesh:
+def sphere_on_block(radius: float, h: float, fine_width: float, *, growth: float = 1.3, size: float | None = None,
+                    block_h: float | None = None) -> HexMesh:
     """Quarter (x, y >= 0) of a spherical cap resting on a block, touching at the origin.
 
     ``cap``: x, y in [0, L], z from the sphere z = R - sqrt(R^2 - x^2 - y^2) to L; ``block``:
     x, y in [0, L], z in [-L, 0]; graded to size h [mm] over ``fine_width`` [mm] from the contact
-    point in x, y and z. Reference point ``cap`` at (0, 0, L). Face sets ``cap/surface``,
+    point in x, y and z (the block to ``block_h``, default h). Reference point ``cap`` at (0, 0, L). Face sets ``cap/surface``,
     ``cap/top``, ``cap/symx`` (x = 0), ``cap/symy`` (y = 0); ``block/top``, ``block/bottom``,
     ``block/symx``, ``block/symy``.
     """
@@ -220,8 +223,10 @@ def sphere_on_block(radius: float, h: float, fine_width: float, *, growth: float
     zs = radius - np.sqrt(radius**2 - Xg**2 - Yg**2)
     cap = block("cap", np.stack([Xg, Yg, zs + S * (L - zs)], axis=-1),
                 names={"kmin": "surface", "kmax": "top", "imin": "symx", "jmin": "symy"})
-    zb = -graded(0.0, L, h, width=fine_width, growth=growth)[::-1]
-    blk = box("block", x, x, zb)
+    hb = h if block_h is None else block_h
+    xb = graded(0.0, L, hb, width=fine_width, growth=growth)
+    zb = -graded(0.0, L, hb, width=fine_width, growth=growth)[::-1]
+    blk = box("block", xb, xb, zb)
     blk = _rename(blk, {"zmax": "top", "zmin": "bottom", "xmin": "symx", "ymin": "symy"}, keep_only=True)
     return with_reference(combine(cap, blk), "cap", (0.0, 0.0, L))
 

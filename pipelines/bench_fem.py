@@ -39,7 +39,7 @@ from fem.verification import cantilever, gear_like, hertz_line, hertz_point
 
 __all__ = ["main"]
 
-GEAR_150K = dict(h=0.12, fine_width=0.72, hz=0.6, z_fine_width=3.0, growth=1.6, h_max=3.5)
+GEAR_150K = dict(h=0.115, fine_width=0.72, hz=0.65, z_fine_width=3.0, growth=1.6, h_max=3.5)  # 147k DOF
 
 
 # ---------------------------------------------------------------------------------------------
