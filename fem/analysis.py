@@ -31,7 +31,7 @@ from tca.errors import ConvergenceError, InputError
 
 from . import stress as st
 from .assembly import assemble_blocks, surface_load
-from .constraints import reduction
+from .constraints import known_names, reduction
 from .contact import contact_set, penalty_active_set
 from .elements import hex8_matrices
 from .linsolve import schur_system
@@ -58,7 +58,7 @@ def _external_load(mesh: HexMesh, model: FEModel) -> np.ndarray:
     for b in model.bodies:
         for i, load in enumerate(b.loads):
             if load.set not in mesh.face_sets:
-                raise InputError(f"bodies[{b.name!r}].loads[{i}].set", load.set, "a face set of the mesh")
+                raise InputError(f"bodies[{b.name!r}].loads[{i}].set", load.set, f"a face set of the mesh ({known_names(mesh.face_sets)})")
             nodes, forces = surface_load(mesh.points, mesh.face_nodes(load.set), load.traction)
             for c in range(3):
                 f[c::3] += np.bincount(nodes, weights=forces[:, c], minlength=mesh.n_points)

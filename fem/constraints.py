@@ -30,7 +30,13 @@ from tca.errors import InputError
 
 from .model import RIGID_DOFS, FEModel, Fixed, Rigid
 
-__all__ = ["set_nodes", "RigidRef", "Reduction", "reduction", "axis_frame"]
+__all__ = ["known_names", "set_nodes", "RigidRef", "Reduction", "reduction", "axis_frame"]
+
+
+def known_names(names) -> str:
+    """The first dozen of some names, sorted, for an error message."""
+    known = sorted(names)
+    return ", ".join(known[:12]) + (" ..." if len(known) > 12 else "")
 
 
 def set_nodes(mesh: HexMesh, name: str, field: str) -> np.ndarray:
@@ -39,9 +45,7 @@ def set_nodes(mesh: HexMesh, name: str, field: str) -> np.ndarray:
         return mesh.point_sets[name]
     if name in mesh.face_sets:
         return mesh.face_set_points(name)
-    known = sorted(set(mesh.point_sets) | set(mesh.face_sets))
-    shown = ", ".join(known[:12]) + (" ..." if len(known) > 12 else "")
-    raise InputError(field, name, f"a point or face set of the mesh ({shown})")
+    raise InputError(field, name, f"a point or face set of the mesh ({known_names(set(mesh.point_sets) | set(mesh.face_sets))})")
 
 
 def axis_frame(axis) -> np.ndarray:

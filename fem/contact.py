@@ -56,6 +56,7 @@ from mesher.hexmesh import HEX_FACES, HexMesh
 from tca.errors import ConvergenceError, GearfeError, InputError
 
 from .assembly import face_node_areas
+from .constraints import known_names
 from .model import ContactOptions, ContactPair
 
 __all__ = ["ContactSet", "contact_set", "ActiveSetSolution", "active_set", "penalty_active_set"]
@@ -96,9 +97,7 @@ class ContactSet:
 
 def _faces(mesh: HexMesh, name: str, field: str) -> np.ndarray:
     if name not in mesh.face_sets:
-        known = sorted(mesh.face_sets)
-        shown = ", ".join(known[:12]) + (" ..." if len(known) > 12 else "")
-        raise InputError(field, name, f"a face set of the mesh ({shown})")
+        raise InputError(field, name, f"a face set of the mesh ({known_names(mesh.face_sets)})")
     fs = mesh.face_sets[name]
     if len(fs) == 0:
         raise InputError(field, name, "a non-empty face set")

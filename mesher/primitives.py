@@ -37,6 +37,7 @@ __all__ = [
     "cylinder_segment",
     "combine",
     "with_reference",
+    "with_face_sets",
     "boundary_faces",
     "cylinder_on_block",
     "sphere_on_block",

@@ -19,6 +19,7 @@ Writes ``report.md`` (tables of measured numbers) and ``bench_fem.json`` into th
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import os
 import platform
@@ -95,8 +96,6 @@ def _quadratic_cantilever(points, cells, kind: str, length: float, traction: flo
 
 def _linear_cantilever(mesh, model, points):
     """hex8 / hex8i through fem.solve on given (possibly distorted) node positions."""
-    import dataclasses
-
     m = dataclasses.replace(mesh, points=points)
     r = solve(m, model)
     tip = r.displacement[m.face_set_points("beam/xmax"), 1].mean()
@@ -166,7 +165,6 @@ def bench_hertz(quick: bool) -> dict:
                 r = solve(mesh, model)
                 row["point_p_err"] = r.pairs[0].max_pressure / ref["p0"] - 1
             formulation.append(row)
-    import dataclasses
 
     for factor in (1.0, 10.0, 100.0, 1000.0):
         mesh, model, ref = hertz_line(elements_per_halfwidth=10)
@@ -227,7 +225,6 @@ def bench_superlu(quick: bool) -> dict:
     """SuperLU against PARDISO on a smaller gear-like mesh (SuperLU > 10 min at 209k DOF, MEASURED.md)."""
     mesh, model, _ = gear_like(mesh_kw=dict(h=0.5, fine_width=1.0, hz=1.25, z_fine_width=5.0, growth=1.8, h_max=5.0))
     res = {"dofs": 3 * mesh.n_points}
-    import dataclasses
 
     for method in ("pardiso", "superlu"):
         if quick and method == "superlu":
