@@ -4,7 +4,8 @@ Steps (timings reported in ``FEResult.info.timings``):
 
 1. element stiffness (C3D8I-like or C3D8) and block assembly of K (``fem.elements``, ``fem.assembly``);
 2. supports by elimination, K_r = T^T K T, f_r = T^T (f - K u_p) + f_ref (``fem.constraints``);
-3. contact geometry from the undeformed mesh; candidate slave nodes g0 < search_gap (``fem.contact``);
+3. contact geometry from the undeformed mesh; candidate slave nodes g0 < search_gap, and the
+   seed (``fem.contact``);
 4. the reduced stiffness is bordered by the gap rows of the k candidate nodes,
 
        A = [K_r  G_r^T]      (symmetric indefinite; unknowns (q, mu), mu = -lambda),
@@ -142,7 +143,7 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
         if outside.any():
             worst = int(np.argmin(np.where(outside, gap_all, np.inf)))
             pair = model.contacts[cs.pair[worst]]
-            where = f"point {np.round(cs.point[worst], 4).tolist()} outside the candidate set (raise search_gap = {pair.search_gap} mm)"
+            where = f"node {int(cs.node[worst])} outside the candidate set (raise search_gap = {pair.search_gap} mm)"
             raise ConvergenceError(f"contact of pair {pair.name!r}", where, float(-gap_all[worst]), sol.iterations)
 
     t1 = time.perf_counter()
@@ -158,7 +159,6 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
     pairs = []
     if cs is not None:
         r -= cs.G.T @ lam_all
-        # nodal pressure = consistent normal nodal force / tributary area (sum over the points)
         p_all = lam_all / cs.area
         pressure = np.nan_to_num(cs.to_nodes(p_all, mesh.n_points))
         gap_nodes = cs.to_nodes(gap_all, mesh.n_points)

@@ -22,13 +22,18 @@ The penalty law is lambda_a = k_a <-g_a>, k_a = eps A_a, eps = factor * E / h [M
 thickness of the slave element under the node: the penalty is ``factor`` times the normal
 stiffness of that element. The nodal pressure is p_a = lambda_a / A_a, the penetration p_a / eps.
 
-Reduced problem. With the stiffness factored once and condensed on the candidate contact DOFs
-C' and the free rigid DOFs F (``fem.linsolve``), S u_C = f~_C + G_C^T lambda, and eliminating
-C' by a dense Cholesky factor of S_11 (SPD: the rigid DOFs are in F):
+Reduced problem (``fem.analysis``). The reduced stiffness bordered by the gap rows of the k
+candidate nodes is factored once with its Schur complement on the free rigid DOFs F and the gap
+rows, which gives directly
 
-    g    = g^ + W lambda - B u_F,        W = G_1 S_11^-1 G_1^T,  B = G_1 S_11^-1 S_1F - G_F,
-    H u_F + B^T lambda = f^_F,           H = S_FF - S_F1 S_11^-1 S_1F,
-    g^ = g0 + G u_p + G_1 S_11^-1 f~_1,  f^_F = f~_F - S_F1 S_11^-1 f~_1.
+    W = G K_RR^-1 G^T         (gap compliance with the free rigid DOFs clamped),
+    B = G K_RR^-1 K_RF - G_F  (gap change per free rigid DOF, sign as below),
+    H = K_FF - K_FR K_RR^-1 K_RF,
+    g^ = g0 + G u_p + G K_RR^-1 f_R,   f^_F = f_F - K_FR K_RR^-1 f_R,
+
+so that the gaps and the equilibrium of the free rigid DOFs read
+
+    g = g^ + W lambda - B u_F,         H u_F + B^T lambda = f^_F.
 
 H is singular for a body that is free before contact closes (a free planet); the bordered system
 on an active set A,
@@ -66,14 +71,12 @@ _OPPOSITE = np.array([1, 0, 4, 5, 2, 3])
 
 @dataclass(frozen=True, eq=False)
 class ContactSet:
-    """Contact points of all pairs (slave nodes or slave Gauss points) projected on their masters."""
+    """One contact constraint per slave node of each pair, projected on the pair's master."""
 
     pair: np.ndarray  # (k,) index into the model's contact pairs
-    slave_nodes: np.ndarray  # (k, s) slave nodes of each contact point (s = 1: node, 4: Gauss point)
-    slave_weights: np.ndarray  # (k, s) their shape-function values at the contact point
-    point: np.ndarray  # (k, 3) contact point on the slave surface [mm]
-    area: np.ndarray  # (k,) area it stands for [mm^2]
-    normal: np.ndarray  # (k, 3) outward master normal at the projection
+    node: np.ndarray  # (k,) slave node
+    area: np.ndarray  # (k,) tributary area A_a [mm^2]
+    normal: np.ndarray  # (k, 3) outward master normal (averaged over the node's Gauss points)
     gap0: np.ndarray  # (k,) initial normal gap [mm]
     penalty: np.ndarray  # (k,) eps [MPa/mm]
     G: sp.csr_matrix  # (k, 3n) gap gradient
@@ -82,15 +85,14 @@ class ContactSet:
 
     @property
     def stiffness(self) -> np.ndarray:
-        """Penalty stiffness eps * A per contact point [N/mm]."""
+        """Penalty stiffness eps * A per constraint [N/mm]."""
         return self.penalty * self.area
 
     def to_nodes(self, values: np.ndarray, n_nodes: int, rows=None) -> np.ndarray:
-        """Area-weighted nodal average of per-point values over the slave nodes (nan where none)."""
+        """Nodal field of per-constraint values (area-weighted where a node is in two pairs; nan elsewhere)."""
         rows = np.arange(len(self.area)) if rows is None else rows
-        w = self.slave_weights[rows] * self.area[rows, None]
-        num = np.bincount(self.slave_nodes[rows].ravel(), weights=(w * values[rows, None]).ravel(), minlength=n_nodes)
-        den = np.bincount(self.slave_nodes[rows].ravel(), weights=w.ravel(), minlength=n_nodes)
+        num = np.bincount(self.node[rows], weights=self.area[rows] * values[rows], minlength=n_nodes)
+        den = np.bincount(self.node[rows], weights=self.area[rows], minlength=n_nodes)
         with np.errstate(invalid="ignore", divide="ignore"):
             return np.where(den > 0, num / den, np.nan)
 
@@ -183,10 +185,11 @@ def _check_master_resolution(mesh, pair, fs, fm):
 
 
 def contact_set(mesh: HexMesh, pairs: tuple[ContactPair, ...], E_cell: np.ndarray, factor: float, order: int = 2) -> ContactSet:
-    """Project the contact points of every pair on its master faces; gaps, normals, areas, penalties.
+    """One constraint per slave node of every pair: gaps, gap gradients, normals, areas, penalties.
 
-    order 0: node-to-surface (slave nodes, tributary areas); order n >= 1: n x n Gauss points per
-    slave face (Gauss-point-to-surface), each carrying its share of the face area.
+    order 0: the node projected on the master (node-to-surface); order n >= 2: the n x n Gauss
+    points of the slave faces projected on the master, their gaps averaged per node with weights
+    N_a dA (segment-to-segment).
     """
     parts = []
     n_dof = 3 * mesh.n_points
@@ -244,21 +247,20 @@ def contact_set(mesh: HexMesh, pairs: tuple[ContactPair, ...], E_cell: np.ndarra
             g0, eps = Dinv @ (M @ g0), Dinv @ (M @ eps)
             nm = Dinv @ (M @ nm)
             nm /= np.linalg.norm(nm, axis=1, keepdims=True)
-            snodes, sw, xs0, area = nodes[:, None], np.ones((len(nodes), 1)), mesh.points[nodes], A
+            snodes, xs0, area = nodes[:, None], mesh.points[nodes], A
         seed = np.zeros(len(g0), bool)
         if len(g0) and pair.contact_point is not None:
             dist = np.linalg.norm(xs0 - np.asarray(pair.contact_point), axis=1)
             seed[dist <= max(pair.contact_radius, dist.min())] = True
         elif len(g0):
             seed[g0 <= g0.min() + 1e-9] = True
-        parts.append(dict(pair=np.full(len(g0), ip), snodes=snodes, sw=sw, point=xs0, area=area, normal=nm, gap0=g0,
-                          penalty=eps, G=G, candidate=(g0 < pair.search_gap) | seed, seed=seed))
-    shapes = {"pair": (0,), "snodes": (0, 1), "sw": (0, 1), "point": (0, 3), "area": (0,), "normal": (0, 3), "gap0": (0,),
-              "penalty": (0,), "candidate": (0,), "seed": (0,)}
+        parts.append(dict(pair=np.full(len(g0), ip), node=snodes[:, 0], area=area, normal=nm, gap0=g0, penalty=eps, G=G,
+                          candidate=(g0 < pair.search_gap) | seed, seed=seed))
+    shapes = {"pair": (0,), "node": (0,), "area": (0,), "normal": (0, 3), "gap0": (0,), "penalty": (0,), "candidate": (0,), "seed": (0,)}
     cat = {key: np.concatenate([p[key] for p in parts]) if parts else np.zeros(shp) for key, shp in shapes.items()}
     G = sp.vstack([p["G"] for p in parts], format="csr") if parts else sp.csr_matrix((0, n_dof))
-    return ContactSet(cat["pair"].astype(np.int64), cat["snodes"].astype(np.int64), cat["sw"], cat["point"], cat["area"],
-                      cat["normal"], cat["gap0"], cat["penalty"], G, cat["candidate"].astype(bool), cat["seed"].astype(bool))
+    return ContactSet(cat["pair"].astype(np.int64), cat["node"].astype(np.int64), cat["area"], cat["normal"], cat["gap0"],
+                      cat["penalty"], G, cat["candidate"].astype(bool), cat["seed"].astype(bool))
 
 
 @dataclass(frozen=True, eq=False)

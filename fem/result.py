@@ -1,8 +1,8 @@
 """Results of a solve: nodal fields, contact per pair and member, reactions, timings, VTU output.
 
-Contact pressure is nodal (slave nodes): the consistent normal nodal force of the contact points
-divided by the node's tributary area [MPa]. The contact area of a pair is the sum of the areas of
-its active contact points [mm^2]; its force is the sum of their normal forces lambda [N]. Load share is each pair's (tooth's) and each group's (member's)
+Contact pressure is nodal (slave nodes): the normal contact force of the node divided by its
+tributary area [MPa]. The contact area of a pair is the sum of the tributary areas of its active
+nodes [mm^2]; its force is the sum of their normal forces lambda [N]. Load share is each pair's (tooth's) and each group's (member's)
 fraction of the total normal contact force.
 
 Support reactions are the nodal forces the supports exert, r = K u - f - G^T lambda, at nodes
@@ -31,7 +31,7 @@ STRESS_RECOVERY = "2x2x2 Gauss-point stresses (incompatible modes included) extr
 @dataclass(frozen=True)
 class PairResult:
     """One contact pair (tooth): normal force [N], force vector on the slave [N], area [mm^2], peak [MPa],
-    numbers of active and candidate contact points."""
+    numbers of active and candidate slave nodes."""
 
     name: str
     group: str
@@ -39,7 +39,7 @@ class PairResult:
     force_vector: tuple[float, float, float]
     area: float
     max_pressure: float
-    active_points: int
+    active_nodes: int
     candidates: int
 
 
@@ -127,7 +127,7 @@ class FEResult:
             "solve_s": float(self.info.timings.get("total_s", float("nan"))),
             "load_share": self.load_share(),
             "pairs": {p.name: {"group": p.group, "force_n": p.force, "area_mm2": p.area, "max_pressure_mpa": p.max_pressure,
-                               "active_points": p.active_points} for p in pairs},
+                               "active_nodes": p.active_nodes} for p in pairs},
             "fillet": self.fillet_stress(),
             "solver": self.info.solver,
             "element": self.info.element,
