@@ -1,3 +1,29 @@
-"""Linear elasticity, penalty contact, rigid bodies and loads, stress recovery."""
+"""Linear elasticity, penalty contact, rigid bodies and loads, stress recovery.
 
-__all__: list[str] = []
+``solve(mesh, model) -> FEResult`` on a :class:`mesher.HexMesh`; the model names bodies with
+their supports (``Fixed``, ``Rigid``) and loads (``Traction``, torques), materials, contact
+pairs and options. See ``fem.solve`` for the steps and each module for its maths.
+"""
+
+from .material import STEEL, Material
+from .model import Body, ContactOptions, ContactPair, FEModel, Fixed, Rigid, SolverOptions, Traction
+from .result import FEResult, PairResult, SolveInfo, torque_balance_error
+from .analysis import solve
+
+__all__ = [
+    "Material",
+    "STEEL",
+    "Fixed",
+    "Rigid",
+    "Traction",
+    "Body",
+    "ContactPair",
+    "ContactOptions",
+    "SolverOptions",
+    "FEModel",
+    "FEResult",
+    "PairResult",
+    "SolveInfo",
+    "solve",
+    "torque_balance_error",
+]

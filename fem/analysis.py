@@ -1,0 +1,185 @@
+"""``solve(mesh, model)``: linear elasticity with rigid ties and penalty contact.
+
+Steps (timings reported in ``FEResult.info.timings``):
+
+1. element stiffness (C3D8I-like or C3D8) and block assembly of K (``fem.elements``, ``fem.assembly``);
+2. supports by elimination, K_r = T^T K T, f_r = T^T (f - K u_p) + f_ref (``fem.constraints``);
+3. contact geometry from the undeformed mesh; candidate slave nodes g0 < search_gap, and the
+   seed (``fem.contact``);
+4. the reduced stiffness is bordered by the gap rows of the k candidate nodes,
+
+       A = [K_r  G_r^T]      (symmetric indefinite; unknowns (q, mu), mu = -lambda),
+           [G_r    0  ]
+
+   and factored once with the Schur complement on C = (free rigid DOFs, gap rows):
+   S = [[H, -B^T], [-B, -W]] in the notation of ``fem.contact``, and the forward substitution
+   gives f^_F and the gaps g^ of the load with the free rigid DOFs clamped. The active-set
+   penalty problem is solved on these k + n_F unknowns by dense algebra, and one backward
+   substitution gives all DOFs (``fem.linsolve``): no refactorization per contact iteration;
+5. checks: no slave node outside the candidate set penetrates; every Newton-like loop converged;
+6. stresses by Gauss-point extrapolation and nodal averaging (``fem.stress``); reactions.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import scipy.sparse as sp
+
+from mesher.hexmesh import HexMesh
+from tca.errors import ConvergenceError, InputError
+
+from . import stress as st
+from .assembly import assemble_blocks, surface_load
+from .constraints import known_names, reduction
+from .contact import contact_set, penalty_active_set
+from .elements import hex8_matrices
+from .linsolve import schur_system
+from .model import FEModel
+from .result import FEResult, PairResult, SolveInfo
+
+__all__ = ["solve"]
+
+
+def _cell_materials(mesh: HexMesh, model: FEModel):
+    lam = np.empty(mesh.n_cells)
+    mu = np.empty(mesh.n_cells)
+    E = np.empty(mesh.n_cells)
+    for b in model.bodies:
+        if b.name not in mesh.bodies:
+            raise InputError("bodies.name", b.name, "a body of the mesh (" + ", ".join(mesh.bodies) + ")")
+        c = mesh.body_cells(b.name)
+        lam[c], mu[c], E[c] = b.material.lam, b.material.mu, b.material.E
+    return lam, mu, E
+
+
+def _external_load(mesh: HexMesh, model: FEModel) -> np.ndarray:
+    f = np.zeros(3 * mesh.n_points)
+    for b in model.bodies:
+        for i, load in enumerate(b.loads):
+            if load.set not in mesh.face_sets:
+                raise InputError(f"bodies[{b.name!r}].loads[{i}].set", load.set, f"a face set of the mesh ({known_names(mesh.face_sets)})")
+            nodes, forces = surface_load(mesh.points, mesh.face_nodes(load.set), load.traction)
+            for c in range(3):
+                f[c::3] += np.bincount(nodes, weights=forces[:, c], minlength=mesh.n_points)
+    return f
+
+
+def solve(mesh: HexMesh, model: FEModel) -> FEResult:
+    """Solve the model on the mesh; raises InputError, ConvergenceError or GearfeError."""
+    t = {}
+    t0 = time.perf_counter()
+    lam_c, mu_c, E_c = _cell_materials(mesh, model)
+    red = reduction(mesh, model)
+    incompatible = model.solver.element == "hex8i"
+    em = hex8_matrices(mesh.points, mesh.cells, lam_c, mu_c, incompatible)
+    K = assemble_blocks(em.stiffness, mesh.cells, mesh.n_points)
+    f = _external_load(mesh, model)
+    t["assembly_s"] = time.perf_counter() - t0
+
+    t1 = time.perf_counter()
+    T = red.T
+    Kr = (T.T @ K @ T).tocsr()
+    fr = T.T @ (f - K @ red.u_prescribed) + red.f_ref
+    t["reduction_s"] = time.perf_counter() - t1
+
+    t1 = time.perf_counter()
+    cs = contact_set(mesh, model.contacts, E_c, model.contact.penalty_factor, model.contact.quadrature) if model.contacts else None
+    cand = np.flatnonzero(cs.candidate) if cs is not None else np.zeros(0, np.int64)
+    k = len(cand)
+    n_r = red.n
+    F = red.free_rigid
+    A = Kr
+    if k:
+        Gr = (cs.G[cand] @ T).tocsr()
+        zero = sp.csr_matrix((np.zeros(k), (np.arange(k), np.arange(k))), shape=(k, k))
+        A = sp.bmat([[Kr, Gr.T], [Gr, zero]], format="csr")
+    # Schur rows: the free rigid DOFs, then the gap rows (bordering)
+    C = np.concatenate([F, n_r + np.arange(k)])
+    iF, ig = np.arange(len(F)), len(F) + np.arange(k)
+    t["contact_setup_s"] = time.perf_counter() - t1
+
+    t1 = time.perf_counter()
+    sysm = schur_system(A, C, model.solver.solver, definite=(k == 0))
+    t["factor_s"] = time.perf_counter() - t1
+
+    state = {}
+
+    def solve_c(yC: np.ndarray) -> np.ndarray:
+        tc = time.perf_counter()
+        S = sysm.schur
+        W = -S[np.ix_(ig, ig)]
+        B = -S[np.ix_(ig, iF)]
+        H = S[np.ix_(iF, iF)]
+        g_p = cs.gap0[cand] + cs.G[cand] @ red.u_prescribed if k else np.zeros(0)
+        ghat = g_p - yC[ig]
+        fhat = yC[iF]
+        kdiag = Kr.diagonal()[F]
+        seed = cs.seed[cand] if k else np.zeros(0, bool)
+        stiff = cs.stiffness[cand] if k else np.zeros(0)
+        area = cs.area[cand] if k else np.zeros(0)
+        sol = penalty_active_set(W, B, H, ghat, fhat, stiff, area, seed, model.contact, kdiag)
+        xC = np.empty(len(C))
+        xC[iF] = sol.u_free
+        xC[ig] = -sol.lam  # bordered unknowns are -lambda: K u + G^T (-lambda) = f
+        state["sol"] = sol
+        state["contact_s"] = time.perf_counter() - tc
+        return xC
+
+    t1 = time.perf_counter()
+    q = sysm.solve(np.concatenate([fr, np.zeros(k)]), solve_c)[:n_r]
+    t["solve_s"] = time.perf_counter() - t1
+    t["contact_s"] = state.get("contact_s", 0.0)
+    sol = state.get("sol")
+    u = red.expand(q)
+    uf = u.ravel()
+
+    lam_all = np.zeros(len(cs.area)) if cs is not None else np.zeros(0)
+    if cs is not None:
+        lam_all[cand] = sol.lam
+        gap_all = cs.gap0 + cs.G @ uf
+        outside = ~cs.candidate & (gap_all < -model.contact.max_penetration)
+        if outside.any():
+            worst = int(np.argmin(np.where(outside, gap_all, np.inf)))
+            pair = model.contacts[cs.pair[worst]]
+            where = f"node {int(cs.node[worst])} outside the candidate set (raise search_gap = {pair.search_gap} mm)"
+            raise ConvergenceError(f"contact of pair {pair.name!r}", where, float(-gap_all[worst]), sol.iterations)
+
+    t1 = time.perf_counter()
+    sq = st.gauss_stress(em.geometry, mesh.cells, u, em.condensation, lam_c, mu_c)
+    s_nodes = st.nodal_average(sq, em.geometry.xq, mesh.cells, mesh.n_points)
+    vm = st.von_mises(s_nodes)
+    pr = st.principal(s_nodes)
+    t["recovery_s"] = time.perf_counter() - t1
+
+    r = K @ uf - f
+    pressure = np.zeros(mesh.n_points)
+    gap_nodes = np.full(mesh.n_points, np.nan)
+    pairs = []
+    if cs is not None:
+        r -= cs.G.T @ lam_all
+        p_all = lam_all / cs.area
+        pressure = np.nan_to_num(cs.to_nodes(p_all, mesh.n_points))
+        gap_nodes = cs.to_nodes(gap_all, mesh.n_points)
+        for ip, pair in enumerate(model.contacts):
+            sel = np.flatnonzero(cs.pair == ip)
+            act = sel[lam_all[sel] > 0.0]
+            fv = (cs.normal[sel] * lam_all[sel, None]).sum(axis=0)
+            p_pair = cs.to_nodes(p_all, mesh.n_points, rows=sel)
+            pairs.append(PairResult(pair.name, pair.group, float(lam_all[sel].sum()), tuple(float(x) for x in fv),
+                                    float(cs.area[act].sum()), float(np.nanmax(p_pair, initial=0.0)), len(act),
+                                    int(cs.candidate[sel].sum())))
+    reaction = np.zeros((mesh.n_points, 3))
+    held = np.unique(np.concatenate(list(red.support_nodes.values())))
+    reaction[held] = r.reshape(-1, 3)[held]
+    t["total_s"] = time.perf_counter() - t0
+    info = SolveInfo(
+        dofs=3 * mesh.n_points, reduced_dofs=red.n, schur_dofs=len(C), solver=sysm.method, element=model.solver.element,
+        candidates=len(cand), active=int(sol.active.sum()) if sol is not None else 0,
+        iterations=sol.iterations if sol is not None else 0, penalty_scale=sol.scale if sol is not None else 1.0,
+        penalty_change=sol.penalty_change if sol is not None else float("nan"),
+        max_penetration=float(np.max(-sol.gap[sol.active], initial=0.0)) if sol is not None else 0.0,
+        timings=t,
+    )
+    return FEResult(mesh, model, u, s_nodes, vm, pr, pressure, gap_nodes, tuple(pairs), reaction, red.rigid_motion(q), info)

@@ -1,0 +1,79 @@
+"""Sparse backends: PARDISO Schur mode against dense algebra, the scipy fallback, VTU output."""
+
+import meshio
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from fem import solve
+from fem import pardiso
+from fem.linsolve import linear_solve, rigid_body_modes, schur_system
+from fem.verification import cantilever, hertz_line
+
+needs_mkl = pytest.mark.skipif(not pardiso.available(), reason="MKL PARDISO not loadable here")
+
+
+def _spd(n=300, seed=0):
+    rng = np.random.default_rng(seed)
+    A = sp.random(n, n, density=0.02, random_state=seed)
+    return (A @ A.T + sp.eye(n) * 5).tocsr(), rng
+
+
+@needs_mkl
+@pytest.mark.parametrize("definite", [True, False])
+def test_pardiso_schur_against_dense(definite):
+    K, rng = _spd()
+    C = np.sort(rng.choice(K.shape[0], 25, replace=False))
+    R = np.setdiff1d(np.arange(K.shape[0]), C)
+    Kd = K.toarray()
+    S_ref = Kd[np.ix_(C, C)] - Kd[np.ix_(C, R)] @ np.linalg.solve(Kd[np.ix_(R, R)], Kd[np.ix_(R, C)])
+    f = rng.standard_normal(K.shape[0])
+    for method in ("pardiso", "superlu"):
+        sysm = schur_system(K, C, method, definite=definite)
+        assert np.abs(sysm.schur - S_ref).max() < 1e-10 * np.abs(S_ref).max()
+        # solving S u_C = f~_C in the callback must give the solution of the whole system
+        u = sysm.solve(f, lambda fc: np.linalg.solve(sysm.schur, fc))
+        assert np.abs(Kd @ u - f).max() < 1e-10 * np.abs(f).max()
+
+
+@needs_mkl
+def test_superlu_fallback_matches_pardiso():
+    mesh, model, _ = hertz_line(elements_per_halfwidth=5.0, solver="pardiso")
+    r1 = solve(mesh, model)
+    mesh, model, _ = hertz_line(elements_per_halfwidth=5.0, solver="superlu")
+    r2 = solve(mesh, model)
+    assert r2.info.solver == "superlu"
+    scale = np.abs(r1.displacement).max()
+    assert np.abs(r1.displacement - r2.displacement).max() < 1e-8 * scale
+    assert r1.pairs[0].max_pressure == pytest.approx(r2.pairs[0].max_pressure, rel=1e-8)
+
+
+def test_amg_cg_linear_solve():
+    from fem.assembly import assemble_blocks
+    from fem.elements import hex8_matrices
+
+    mesh, model, _ = cantilever(n_depth=4)
+    lam = np.full(mesh.n_cells, 1.2e5)
+    mu = np.full(mesh.n_cells, 8e4)
+    K = assemble_blocks(hex8_matrices(mesh.points, mesh.cells, lam, mu).stiffness, mesh.cells, mesh.n_points)
+    free = np.flatnonzero(mesh.points[:, 0] > 1e-9)
+    dofs = (3 * free[:, None] + np.arange(3)).ravel()
+    Kf = K[dofs][:, dofs].tocsr()
+    f = np.random.default_rng(0).standard_normal(len(dofs))
+    u, info = linear_solve(Kf, f, "amg", modes=rigid_body_modes(mesh.points[free]), tol=1e-10)
+    u_ref, _ = linear_solve(Kf, f, "superlu")
+    assert np.abs(u - u_ref).max() < 1e-6 * np.abs(u_ref).max()
+    assert info["iterations"] > 0
+
+
+def test_vtu_has_all_fields(tmp_path):
+    mesh, model, _ = hertz_line(elements_per_halfwidth=5.0)
+    r = solve(mesh, model)
+    path = tmp_path / "result.vtu"
+    r.write_vtu(path)
+    m = meshio.read(path)
+    for name in ("displacement", "von_mises", "principal_stress", "stress", "contact_pressure", "reaction"):
+        assert name in m.point_data
+    assert np.allclose(m.point_data["von_mises"], r.von_mises)
+    assert np.array_equal(m.cell_data["body"][0], mesh.cell_body)
+    assert m.cells[0].data.shape == (mesh.n_cells, 8)
