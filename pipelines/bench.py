@@ -1,7 +1,7 @@
 """`make bench`: every area's speed-vs-error benchmark, one subprocess each, gathered in one report.
 
-Each ``pipelines.bench_<area>`` module writes ``<out>/<area>.md`` (and its plots); this runner
-writes ``<out>/REPORT.md`` linking them. TCA runs on one core (the target is per core); the FE
+Each ``pipelines.bench_<area>`` module writes its markdown report (and plots) into
+``<out>/<area>/``; this runner writes ``<out>/REPORT.md`` linking them. TCA runs on one core (the target is per core); the FE
 benchmark uses both cores.
 """
 
@@ -21,6 +21,7 @@ __all__ = ["main", "AREAS"]
 ONE_CORE = {"OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
 AREAS = {
     "tca": ("pipelines.bench_tca", ONE_CORE),
+    "fem": ("pipelines.bench_fem", {}),
 }
 
 
@@ -40,8 +41,11 @@ def main(argv=None) -> int:
         if importlib.util.find_spec(mod) is None:
             raise SystemExit(f"benchmark module {mod} is missing")
         t0 = time.perf_counter()
-        p = subprocess.run([sys.executable, "-m", mod, "--out", str(out)], env={**os.environ, **env})
-        report.append(f"- [{area}]({area}.md): {'ok' if p.returncode == 0 else f'FAILED ({p.returncode})'}, "
+        sub = out / area
+        p = subprocess.run([sys.executable, "-m", mod, "--out", str(sub)], env={**os.environ, **env})
+        mds = sorted(sub.glob("*.md"))
+        link = f"[{area}]({area}/{mds[0].name})" if mds else area
+        report.append(f"- {link}: {'ok' if p.returncode == 0 else f'FAILED ({p.returncode})'}, "
                       f"{time.perf_counter() - t0:.0f} s")
         status |= p.returncode != 0
     (out / "REPORT.md").write_text("\n".join(report) + "\n")
