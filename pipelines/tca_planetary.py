@@ -77,7 +77,7 @@ def run(case: Table, out: Path) -> dict:
         rt.done()
     opts = read_tca_options(case.table("tca", required=False))
     title = case.get("title", str, "")
-    reg = regulate_train(train, errors, opts, tol * ARCSEC, maxiter)
+    reg = regulate_train(train, errors, opts, tol * ARCSEC, maxiter, progress=lambda m: print(f"  {m}", flush=True))
 
     write_te_csv(reg, out / "te.csv")
     plot_train_te(reg, out / "fig14_te.png", title)

@@ -166,7 +166,7 @@ def dz_first_order(train: PlanetaryTrain, d_ex: float) -> float:
         raise InputError(f"gears.{train.ring.name}.helix_deg", math.degrees(b3),
                          f"different from the sun's {math.degrees(b1):g} deg: regulation needs beta1 != beta3 "
                          "(section 1.3 (1), Eq. 1.16)")
-    return -2.0 * d_ex * math.cos(b1) * math.cos(b3) / math.sin(b1 - b3)
+    return -2.0 * d_ex * math.cos(b1) * math.cos(b3) / math.sin(b1 - b3) + 0.0  # no -0.0
 
 
 def _hand(h: int) -> str:

@@ -50,7 +50,7 @@ from .planetary import PlanetaryTrain, ShaftErrors
 from .transforms import Mount, rot_x, rot_y, rot_z
 
 __all__ = ["MeshTE", "SubgearTE", "member_pose", "subgear_pairs", "phi1_grid", "subgear_meshes", "run_subgear_tca",
-           "compose_te", "refined_max"]
+           "compose_te", "periodic_peak"]
 
 
 def member_pose(train: PlanetaryTrain, i: int, member: str, errors: ShaftErrors = ShaftErrors(),
@@ -141,14 +141,6 @@ class MeshTE:
                                 f"no pair of teeth is in contact at phi = {math.degrees(bad):.6f} deg (contact ratio < 1)")
         return out
 
-    def active(self, phi) -> tuple[np.ndarray, np.ndarray]:
-        """Grid index (nearest node) of the reference position in contact and its pair shift k."""
-        val, ks = self.branches(phi)
-        a = np.argmax(val, 1)
-        k = ks[a]
-        t = (np.asarray(phi, float) - k * self.pitch - self.phi0) / self.h
-        return np.clip(np.round(t).astype(int), 0, len(self.branch) - 1), k
-
 
 def phi1_grid(train: PlanetaryTrain, opts: TCAOptions) -> np.ndarray:
     """Global sun angles φ1 [rad] over opts.cycles sun pitches, on the grid of every planet's sun mesh."""
@@ -183,25 +175,25 @@ class SubgearTE:
         return self.te3 / ARCSEC
 
     def peak(self) -> float:
-        """Largest Δφ3 over the grid, refined by a parabola through the three best points [rad]."""
-        return float(refined_max(self.te3))
+        """Largest Δφ3 over the (whole-cycle) grid, refined by a parabola through three samples [rad]."""
+        return periodic_peak(self.te3)
 
     @property
     def edge_contact(self) -> bool:
         return self.mesh12.result.edge_contact or self.mesh23.result.edge_contact
 
 
-def refined_max(y: np.ndarray) -> float:
-    """Maximum of samples y, refined by the parabola through the largest sample and its neighbours."""
-    j = int(np.argmax(y))
-    if 0 < j < len(y) - 1:
-        a, b, c = y[j - 1], y[j], y[j + 1]
-        den = a - 2 * b + c
-        if den < 0:
-            t = 0.5 * (a - c) / den
-            if abs(t) <= 1:
-                return float(b - 0.25 * (a - c) * t)
-    return float(y[j])
+def periodic_peak(y: np.ndarray) -> float:
+    """Maximum of a periodic sampled function (y[-1] repeats y[0]), refined by a parabola through 3 points."""
+    v = np.asarray(y, float)[:-1]
+    j = int(np.argmax(v))
+    a, b, c = v[j - 1], v[j], v[(j + 1) % len(v)]
+    den = a - 2 * b + c
+    if den < 0:
+        t = 0.5 * (a - c) / den
+        if abs(t) <= 1:
+            return float(b - 0.25 * (a - c) * t)
+    return float(b)
 
 
 def compose_te(train: PlanetaryTrain, i: int, member: str, mesh12: MeshTE, mesh23: MeshTE,

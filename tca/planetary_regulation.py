@@ -33,23 +33,10 @@ import numpy as np
 from .errors import ConvergenceError, InputError
 from .pair_tca import ARCSEC, TCAOptions
 from .planetary import PlanetaryTrain, ShaftErrors, dz_first_order
-from .planetary_mesh import SubgearTE, phi1_grid, run_subgear_tca
+from .planetary_mesh import SubgearTE, periodic_peak, phi1_grid, run_subgear_tca
 
 __all__ = ["TwinTE", "TrainTE", "MemberRegulation", "TrainRegulation", "periodic_peak", "twin_te", "integrated_te",
            "nominal_peak", "regulate_member", "regulate_train", "member_d_ex"]
-
-
-def periodic_peak(y: np.ndarray) -> float:
-    """Maximum of a periodic sampled function (y[-1] repeats y[0]), refined by a parabola through 3 points."""
-    v = np.asarray(y, float)[:-1]
-    j = int(np.argmax(v))
-    a, b, c = v[j - 1], v[j], v[(j + 1) % len(v)]
-    den = a - 2 * b + c
-    if den < 0:
-        t = 0.5 * (a - c) / den
-        if abs(t) <= 1:
-            return float(b - 0.25 * (a - c) * t)
-    return float(b)
 
 
 @dataclass(frozen=True, eq=False)
@@ -232,8 +219,11 @@ class TrainRegulation:
 
 
 def regulate_train(train: PlanetaryTrain, errors, opts: TCAOptions = TCAOptions(), tol: float = 1e-3 * ARCSEC,
-                   maxiter: int = 12) -> TrainRegulation:
-    """Regulate all 2n members (mirror images computed once) and integrate the TE of the train."""
+                   maxiter: int = 12, progress=None) -> TrainRegulation:
+    """Regulate all 2n members (mirror images computed once) and integrate the TE of the train.
+
+    ``progress(message)`` is called after each shaft (e.g. ``print``).
+    """
     t0, c0 = time.perf_counter(), time.process_time()
     errors = tuple(errors)
     if len(errors) != train.planets:
@@ -251,6 +241,10 @@ def regulate_train(train: PlanetaryTrain, errors, opts: TCAOptions = TCAOptions(
         before.append(TwinTE(i, {"a": ra.before, "b": rb.before}, mir))
         first.append(TwinTE(i, {"a": ra.first_order, "b": rb.first_order}, mir))
         after.append(TwinTE(i, {"a": ra.after, "b": rb.after}, mir))
+        if progress is not None:
+            progress(f"planet {i + 1}/{len(errors)}: dZ(1) = {ra.dz1:+.4f} mm, dZ(2) = {ra.dz2:+.4f} mm"
+                     + ("" if mir else f" (a), {rb.dz2:+.4f} mm (b)")
+                     + f"  [{time.perf_counter() - t0:.1f} s]")
     return TrainRegulation(train, errors, target, tuple(regs), integrated_te(before), integrated_te(first),
                            integrated_te(after), time.perf_counter() - t0, time.process_time() - c0, len(cache))
 

@@ -155,3 +155,22 @@ def test_mesh_te_from_result_keeps_the_envelope(train):
     r = run_pair_tca(subgear_pairs(train, 0, "a")[0], FAST)
     m = MeshTE.from_result(r)
     np.testing.assert_allclose(m(r.phi1), r.te, atol=1e-15)
+
+
+def test_pair_explicit_mounts_are_checked(train):
+    # tca.pair accepts explicit mounts (both, and no Misalignment on top of them)
+    from tca.errors import InputError
+    from tca.transforms import Mount
+
+    sun, planet, _ = train.gears("a")
+    m = Mount(np.zeros(3), np.eye(3), 0.0)
+    with pytest.raises(InputError, match="mount2"):
+        GearPair(sun, planet, mount1=m)
+    p1, _ = subgear_pairs(train, 0, "a")
+    with pytest.raises(InputError, match="misalignment"):
+        GearPair(sun, planet, Misalignment(d_ex=0.01), mount1=p1.mounts()[0], mount2=p1.mounts()[1])
+    # without errors the explicit mounts are the reference ones of tca.pair
+    for ma, mb in zip(p1.mounts(), GearPair(sun, planet).mounts()):
+        np.testing.assert_allclose(ma.origin, mb.origin, atol=1e-12)
+        np.testing.assert_allclose(ma.R0, mb.R0, atol=1e-12)
+        assert ma.phase == pytest.approx(mb.phase, abs=1e-15)
