@@ -20,6 +20,14 @@ backlash): :math:`g(\Delta Z) = \max_{\phi_1}\Delta\phi_{3k}^{(i)}(\phi_1;\Delta
 displacement :math:`\Delta E_x + s_k z_m\sin\Delta\gamma`) starts a secant iteration on TCA
 results; :math:`\Delta Z^{(2)}` is its root. The spread of the train is
 :math:`\max_i P_i - \min_i P_i` over the planets' maxima :math:`P_i`.
+
+The criterion compares maxima because the functions of different planets are phase-shifted copies
+(by :math:`\theta_i`, and an axial shift also moves a member's function by about
+:math:`\Delta Z\tan\beta_1/r_1` in :math:`\phi_1`): the maximum, like the mean, is invariant to a
+phase shift. Under Δγ the members' functions are also shifted in phase by the tilt (the parabola
+absorbs the linear error, Litvin's point), so members *a* and *b* reach equal maxima but do not
+coincide pointwise; their axes are tilted, so ΔZ along them also moves them tangentially by
+:math:`\Delta Z\sin\Delta\gamma`, which changes their sensitivity to ΔZ (secant, not Eq. 1.16).
 """
 
 from __future__ import annotations
