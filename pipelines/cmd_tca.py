@@ -23,6 +23,7 @@ __all__ = ["add_args", "handle", "run_case", "to_json", "KINDS"]
 # case kind -> module in pipelines with run(case: Table, out: Path) -> dict (the summary)
 KINDS = {
     "pair": "pipelines.tca_pair",
+    "planetary": "pipelines.tca_planetary",
 }
 
 

@@ -18,6 +18,11 @@ the line of centres (axes become crossed); ``d_gamma_v`` — turned about the ax
 the line of centres and to the gear axis (axes intersect); ``d_center`` ΔE — increase of the
 centre distance; ``d_ex`` ΔE_x — displacement perpendicular to the shortest centre distance
 (the installment error of Table 1.2); ``d_axial`` — displacement along gear 2's axis.
+
+Multi-body trains (the planetary train of Part 1) may instead give both mounts explicitly
+(``mount1``, ``mount2``, e.g. a planet whose shaft is displaced and tilted): they must stay close
+to the reference configuration above, whose phases and angles the TCA uses for its start and
+for Eq. (1.13); ``misalignment`` must then be left at zero.
 """
 
 from __future__ import annotations
@@ -65,8 +70,15 @@ class GearPair:
     center_distance: float | None = None  # default: standard (pitch circles tangent) [mm]
     side1: int = 1
     side2: int = -1
+    mount1: Mount | None = None  # explicit mounts (both or none), replacing the reference ones
+    mount2: Mount | None = None
 
     def __post_init__(self):
+        if (self.mount1 is None) != (self.mount2 is None):
+            raise InputError("mount2" if self.mount2 is None else "mount1", None, "both explicit mounts or none")
+        if self.mount1 is not None and self.misalignment != Misalignment():
+            raise InputError("misalignment", self.misalignment, "zero when explicit mounts are given (apply the "
+                             "errors to the mounts)")
         if self.gear1.internal and self.gear2.internal:
             raise InputError("gear2.internal", True, "at most one internal gear in a pair")
         if self.side1 not in (1, -1) or self.side2 not in (1, -1):
@@ -110,7 +122,9 @@ class GearPair:
         return self.gear1.teeth / self.gear2.teeth
 
     def mounts(self) -> tuple[Mount, Mount]:
-        """Mounts of gear 1 and (misaligned) gear 2 in S_f."""
+        """Mounts of gear 1 and (misaligned) gear 2 in S_f (the explicit ones when given)."""
+        if self.mount1 is not None:
+            return self.mount1, self.mount2
         m1 = Mount(np.zeros(3), np.eye(3), 0.0)
         E = self.E
         ms = self.misalignment
