@@ -89,14 +89,12 @@ def main(argv=None) -> int:
             r, w, c = _timed(run_isostatic_tca, tr, phi)
             s = r.summary()
             res[(variant, name)] = r
-            key = (variant, name.split()[0].replace("indexing", "indexing"))
             tgt = TARGETS.get((variant, name.split()[0]), "")
             per = s["te_period_sun_rev"]
             L.append(f"| {variant} | {name} | {len(phi)} | {s['carrier_lag_mean_arcsec']:.4f} | "
                      f"{s['carrier_te_peak_to_peak_arcsec']:.4g} | {s['sun_center_max_um']:.4f} | "
                      f"{s['sun_center_radius_um']:.4f} | {'-' if per is None else f'{per:.5f}'} | "
                      f"{s['all_planets_in_contact']} | {w:.2f} / {c:.2f} | {tgt} |")
-            del key
             tag = f"{variant}_{name.split()[0]}"
             plot_sun_center(r, out / f"{tag}_sun_center.png", title=f"{variant}: {name}")
             plot_carrier_te(r, out / f"{tag}_carrier_te.png", title=f"{variant}: {name}")

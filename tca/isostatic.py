@@ -43,8 +43,8 @@ import numpy as np
 from .dof import DOFCount
 from .errors import ConvergenceError, GeometryError, InputError
 from .isostatic_flank import apply, nearest_tooth, rot2
-from .isostatic_mesh import (BODY_CARRIER, BODY_RING, BODY_SUN, JT_CENTRES, Members, TrainFlanks, backlash_solve,
-                             corner_gap, line_crossing, mate_tooth, poses, subtrain_eval)
+from .isostatic_mesh import (BODY_CARRIER, BODY_RING, BODY_SUN, JT_CENTRES, Members, Poses, TrainFlanks,
+                             backlash_solve, corner_gap, line_crossing, mate_tooth, poses, subtrain_eval)
 from .isostatic_train import PlanetaryTrain
 from .newton import newton
 
@@ -219,6 +219,14 @@ class IsostaticResult:
         """Changes of the contacting pair over the run, all meshes."""
         return int(np.sum(np.any(np.diff(self.teeth, axis=0) != 0, axis=-1)))
 
+    @property
+    def positions_per_mesh_cycle(self) -> float | None:
+        """Sampling of the mesh cycles (a sun-mesh cycle is 1 / ((1 - m_c1) N1) sun revolutions)."""
+        if len(self.phi1) < 2:
+            return None
+        step = float(np.median(np.abs(np.diff(self.phi1)))) / (2 * math.pi)
+        return 1.0 / (step * (1 - self.train.ratio) * self.train.sun.teeth)
+
     def te_period_sun_rev(self) -> float | None:
         """Period of the strongest harmonic of the carrier TE [sun revolutions] (None if the TE is flat)."""
         if self.carrier_te_peak_to_peak_arcsec < 1e-3:
@@ -252,6 +260,8 @@ class IsostaticResult:
             "ratio_mc1": self.train.ratio,
             "positions": int(len(self.phi1)),
             "sun_revolutions": float((self.phi1[-1] - self.phi1[0]) / (2 * math.pi)) if len(self.phi1) > 1 else 0.0,
+            # below ~8, harmonics of the mesh frequency alias (the TE period then reflects the sampling)
+            "positions_per_mesh_cycle": self.positions_per_mesh_cycle,
             "transitions": self.transitions,
             "switch_rounds": self.rounds,
             "min_contact_margin_mm": float(self.margin.min()),
@@ -495,9 +505,8 @@ def _switch(train, fl, m: Members, x, opts, wpos):
     return teeth, xn, changed, backlash
 
 
-def _stack_poses(P):
-    from .isostatic_mesh import Poses
-
+def _stack_poses(P: Poses) -> Poses:
+    """The poses twice over (for the two neighbours of every member)."""
     return Poses(*(np.concatenate([getattr(P, f), getattr(P, f)]) for f in
                    ("As", "cs", "Ap", "cp", "Op", "Tc", "Ar", "cr", "q", "a")))
 

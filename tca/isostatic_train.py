@@ -64,9 +64,12 @@ _SAME = ("teeth", "module", "pressure_angle", "face_width", "helix", "hand", "re
 
 
 def _vec2(v, name):
-    a = np.asarray(v, float).reshape(-1)
+    try:
+        a = np.asarray(v, float).reshape(-1)
+    except (TypeError, ValueError):
+        raise InputError(name, v, "two numbers (x, y)") from None
     if a.shape != (2,) or not np.all(np.isfinite(a)) or np.abs(a).max() > 1.0:
-        raise InputError(name, v, "two finite numbers (x, y) with |value| <= 1000 um")
+        raise InputError(name, (a * 1e3).tolist() if a.size else v, "two finite numbers (x, y) with |value| <= 1000 um")
     return a
 
 
