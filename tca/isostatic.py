@@ -460,29 +460,28 @@ def _switch(train, fl, m: Members, x, opts, wpos):
                                 f"{wpos(i // Np)}, planet {i % Np + 1}, {names[k]} mesh: the contact point and those "
                                 "of the neighbouring pairs leave the working areas (edge contact, not modelled by the "
                                 "planar TCA)")
-        # extended profiles that interfere outside the working areas: the bounded teeth touch only if an end
-        # of a working area (tip or start of the fillet) enters the mate (edge contact, not modelled)
-        out_nb = okk & ~valid[:, [0, 2]] & (np.nan_to_num(s, nan=0.0) < -opts.tie_tol)
-        if out_nb.any():
-            rows, cols = np.nonzero(out_nb)
+        # Neighbours whose common normal lies outside the working areas (or does not exist: extended profiles
+        # past the base circle) are no candidates. The bounded teeth could still touch, but then an end of a
+        # working area (tip or start of the fillet) enters the mate (the deepest point of two smooth profiles
+        # is a common normal or an end point): that is edge contact, which the planar TCA does not model.
+        inval = ~valid[:, [0, 2]]
+        if inval.any():
+            rows, cols = np.nonzero(inval)
             idx = rows + cols * M
-            for fo, Ao, co, ko, uo, fm_, Am, cm, km, um in ((fa, A2a, c2a, ka, ua, fb, A2b, c2b, kb, ub),
-                                                          (fb, A2b, c2b, kb, ub, fa, A2a, c2a, ka, ua)):
-                g = fo.eval(uo[idx])[0]
-                sel = fo.margin(g) < -opts.area_tol
-                if not sel.any():
-                    continue
-                rho = np.linalg.norm(g[sel], axis=-1)
-                ulim = np.where(fo.kappa * (rho - fo.r_form) < 0, fo.u_form, fo.u_tip)
-                j = idx[sel]
-                gap, _, mgm = corner_gap(fo, Ao[j], co[j], ko[j], ulim, fm_, Am[j], cm[j], km[j], um[j])
-                bad = (gap < -opts.tie_tol) & (mgm >= -opts.area_tol)
-                if bad.any():
-                    i = int(rows[sel][np.argmax(bad)])
-                    raise GeometryError(train.planet.name, "edge contact",
-                                        f"{wpos(i // Np)}, planet {i % Np + 1}, {names[k]} mesh: the end of the "
-                                        f"working area of the {fo.gear.name}'s flank enters the mate by "
-                                        f"{-gap[bad].min() * 1e3:.3f} um (tip edge contact, not modelled by the planar TCA)")
+            for fo, Ao, co, ko, fm_, Am, cm, km in ((fa, A2a, c2a, ka, fb, A2b, c2b, kb),
+                                                    (fb, A2b, c2b, kb, fa, A2a, c2a, ka)):
+                for ulim in (fo.u_form, fo.u_tip):
+                    gap, _ = corner_gap(fo, Ao[idx], co[idx], ko[idx], np.full(len(idx), ulim), fm_, Am[idx],
+                                        cm[idx], km[idx])
+                    bad = gap < -opts.tie_tol
+                    if bad.any():
+                        i = int(rows[np.argmax(bad)])
+                        where_end = "start of the fillet" if ulim == fo.u_form else "tip"
+                        raise GeometryError(train.planet.name, "edge contact",
+                                            f"{wpos(i // Np)}, planet {i % Np + 1}, {names[k]} mesh: the {where_end} of "
+                                            f"the {fo.gear.name}'s flank of a neighbouring pair enters the mate by "
+                                            f"{-gap[bad].min() * 1e3:.3f} um (edge contact, not modelled by the planar "
+                                            "TCA)")
         tie = valid & (S <= smin[:, None] + opts.tie_tol)
         choice = np.argmax(np.where(tie, marg, -np.inf), -1)
         edge = ~valid[:, 1] & (choice != 1) & (S[np.arange(M), choice] > opts.tie_tol)

@@ -108,8 +108,9 @@ class PlanarFlank:
     def normal(self, g1, g2):
         """Outward unit normal n and dn/du (each (..., 2)) from g', g''."""
         L = np.sqrt(np.einsum("...i,...i", g1, g1))[..., None]
-        n = self.orient * perp(g1) / L
-        dn = self.orient * (perp(g2) / L - perp(g1) * np.einsum("...i,...i", g1, g2)[..., None] / L**3)
+        with np.errstate(divide="ignore", invalid="ignore"):  # singular points (|g'| = 0) give nan: no solution there
+            n = self.orient * perp(g1) / L
+            dn = self.orient * (perp(g2) / L - perp(g1) * np.einsum("...i,...i", g1, g2)[..., None] / L**3)
         return n, dn
 
     def margin(self, g) -> np.ndarray:

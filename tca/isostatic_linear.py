@@ -37,7 +37,10 @@ With equally spaced planets :math:`\sum_i\boldsymbol\nu_i = 0`, hence in case 2
 gives no TE and a fixed sun offset :math:`2\cos\alpha\,|\Delta\mathbf E_c|`; a sun run-out is cancelled by an
 equal and opposite sun displacement; a planet run-out :math:`\varepsilon_p` gives a harmonic TE of
 amplitude :math:`m_{c1}\,2\cos\alpha\,\varepsilon_p/(3r_{b1})` with the period of the planet's turn
-relative to the carrier; radial pin errors act only at second order.
+relative to the carrier; a radial pin error has no effect at all with involute gears (with
+:math:`N_3 = N_1 + 2N_2` both meshes change their operating pressure angle alike, and the backlash
+the sun mesh gains, :math:`(r_{b1} + r_{b2})(\mathrm{inv}\,\alpha_w - \mathrm{inv}\,\alpha)`, the ring mesh
+loses).
 """
 
 from __future__ import annotations

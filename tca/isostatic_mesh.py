@@ -225,20 +225,26 @@ def mate_tooth(train: PlanetaryTrain, flank: PlanarFlank, P: Poses, body: str, c
     return nearest_tooth(c0, sg, flank.pitch_angle, flank.teeth, np.arctan2(d[:, 1], d[:, 0]))
 
 
-def corner_gap(fc: PlanarFlank, Ac, cc, kc, uc, fm: PlanarFlank, Am, cm, km, um0, iters: int = 20):
-    """Signed distance of the working-area end point u = uc of tooth kc of flank c from the mate flank (negative: inside the mate).
+def corner_gap(fc: PlanarFlank, Ac, cc, kc, uc, fm: PlanarFlank, Am, cm, km, samples: int = 33, iters: int = 16):
+    """Signed distance of the point u = uc of tooth kc of flank c from the working area of the mate flank.
 
-    Returns (gap [mm], u on the mate, margin of that mate point [mm]).
+    Negative: the point is inside the mate's tooth. The foot of the normal is searched in the mate's working area
+    (nearest of `samples` points, then Newton on (P_c - P_m) . t_m = 0, kept inside the area); where the point has
+    no foot inside that area the gap is +inf (the mate's own end points are checked the other way round).
+    Returns (gap [mm], u of the foot on the mate).
     """
+    k = len(uc)
     Pc = fc.place(Ac, cc, kc, uc)[0]
-    u = np.array(um0, float)
-    lo, hi = fm.u_range
-    w = hi - lo
+    us = np.linspace(fm.u_form, fm.u_tip, samples)
+    rep = lambda a: np.repeat(a, samples, 0)  # noqa: E731
+    Ps = fm.place(rep(Am), rep(cm), rep(km), np.tile(us, k))[0].reshape(k, samples, 2)
+    u = us[np.argmin(np.linalg.norm(Ps - Pc[:, None], axis=-1), axis=1)]
     for _ in range(iters):  # foot of the normal from Pc on the mate: (Pc - Pm) . t_m = 0
         Pm, t, tu, _, _ = fm.place(Am, cm, km, u)
         f = np.einsum("...i,...i", Pc - Pm, t)
         df = np.einsum("...i,...i", Pc - Pm, tu) - np.einsum("...i,...i", t, t)
-        u = np.clip(u - f / np.where(np.abs(df) > 1e-12, df, -1e-12), lo - w, hi + w)
+        u = np.clip(u - f / np.where(np.abs(df) > 1e-12, df, -1e-12), fm.u_form, fm.u_tip)
     Pm, t, tu, Amk, g = fm.place(Am, cm, km, u)
     n = apply(Amk, fm.normal(*fm.eval(u)[1:])[0])
-    return np.einsum("...i,...i", Pc - Pm, n), u, fm.margin(g)
+    foot = np.abs(np.einsum("...i,...i", Pc - Pm, t)) < 1e-9 * np.linalg.norm(t, axis=-1)
+    return np.where(foot, np.einsum("...i,...i", Pc - Pm, n), np.inf), u

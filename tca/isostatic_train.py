@@ -134,6 +134,16 @@ class PlanetaryTrain:
         if (N1 + N3) % n:
             raise InputError("planets.count", n, f"a divisor of sun.teeth + ring.teeth = {N1 + N3} "
                              "(assembly condition for equally spaced planets)")
+        for i, (pin, p) in enumerate(zip(self.pins, planets), 1):  # tips must clear the roots of the mates
+            dist = float(np.hypot(*pin))
+            for what, c in (("sun tip / planet root", dist - s.r_tip - p.r_root),
+                            ("planet tip / sun root", dist - p.r_tip - s.r_root),
+                            ("planet tip / ring root", r.r_root - dist - p.r_tip),
+                            ("ring tip / planet root", r.r_tip - dist - p.r_root)):
+                if c <= 0:
+                    raise GeometryError(p.name, "tip interference",
+                                        f"planet {i}: {what} clearance is {c * 1e3:.1f} um with the pin at "
+                                        f"{dist:.4f} mm from the carrier axis (radial error too large)")
         if n > 1:
             gap = 2 * self.r_c * math.sin(math.pi / n) - 2 * p0.r_tip
             if gap <= 0:

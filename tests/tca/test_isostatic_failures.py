@@ -80,3 +80,26 @@ def test_contact_ratio_below_one_is_reported_as_edge_contact():
     tr = PlanetaryTrain(short[SUN], (short[PLANET],) * 3, short[RING])
     with pytest.raises(GeometryError, match=r"(edge contact|outside the working areas).*phi1 = .* deg \(position"):
         run_isostatic_tca(tr, phi1_grid(tr, 60, carrier_revolutions=0.02))
+
+
+def test_corner_gap_measures_penetration_of_a_point_into_the_mate():
+    # The edge-contact check measures end points of working areas against the mate flank. At a solved contact the
+    # sun's contact point has gap 0 to the planet flank; turning the planet by +-delta about its axis changes the
+    # gap by -+ r_b2 delta along the line of action (1e-9 mm tolerance: Newton foot and round-off; the
+    # linearisation error (r_b2 delta)^2 / rho ~ 1e-10 mm for delta = 1e-5 rad).
+    from tca.isostatic_mesh import Members, TrainFlanks, corner_gap, poses
+
+    tr = PlanetaryTrain(SUN, (PLANET,) * 3, RING)
+    r = run_isostatic_tca(tr, np.array([0.2]))
+    fl = TrainFlanks.of(tr)
+    m = Members(np.full(3, 0.2), tr.theta, tr.pins, np.zeros((3, 2)), r.teeth.reshape(3, 4), np.zeros((3, 3, 2)))
+    gaps = []
+    for delta in (-1e-5, 0.0, 1e-5):
+        P = poses(tr, fl, m, r.phi2[0] + delta, r.phi_c_planets[0])
+        g, _ = corner_gap(fl.sun, P.As, P.cs, m.teeth[:, 0], r.params[0, :, 0], fl.planet_s, P.Ap, P.cp, m.teeth[:, 1])
+        gaps.append(g)
+    gaps = np.array(gaps)
+    assert np.abs(gaps[1]).max() < 1e-9
+    slope = PLANET.r_b * 1e-5
+    assert np.abs(np.abs(gaps[0]) - slope).max() < 1e-9 and np.abs(np.abs(gaps[2]) - slope).max() < 1e-9
+    assert np.all(np.sign(gaps[0]) == -np.sign(gaps[2]))

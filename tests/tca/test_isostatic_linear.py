@@ -148,3 +148,17 @@ def test_longitudinal_crowning_does_not_change_the_3d_pair_te():
     b = run_pair_tca(GearPair(sun, dataclasses.replace(p, plunge=DiskPlunge(100.0, 6.25e-5))))
     assert np.abs(a.te_arcsec - b.te_arcsec).max() < 1e-6
     assert a.te_peak_to_peak_arcsec == pytest.approx(13.89, abs=0.02)
+
+
+def test_radial_pin_error_has_no_effect_on_an_involute_train():
+    # With N3 = N1 + 2 N2 the sun mesh gains exactly the backlash the ring mesh loses when a planet moves
+    # radially (equal operating pressure angles): no lag and no sun motion even for 0.9 mm (< 1e-6 arcsec,
+    # < 1e-6 um: round-off), until the tips reach the roots of the mates (rejected)
+    tr = make("table31", placements=(PlanetPlacement(radial=0.9), PlanetPlacement(radial=-0.5), PlanetPlacement()))
+    r = run_isostatic_tca(tr, phi1_grid(tr, 90, carrier_revolutions=0.2))
+    assert np.abs(r.te_arcsec).max() < 1e-6
+    assert np.abs(r.sun_center_um).max() < 1e-6
+    from tca.errors import GeometryError
+
+    with pytest.raises(GeometryError, match="tip interference"):
+        make("table31", placements=(PlanetPlacement(radial=1.0), PlanetPlacement(), PlanetPlacement()))
