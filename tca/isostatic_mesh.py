@@ -162,7 +162,7 @@ def subtrain_eval(train: PlanetaryTrain, fl: TrainFlanks, m: Members, x: np.ndar
     return F, J, P, mesh
 
 
-def line_crossing(flank: PlanarFlank, A, c, k, P0, nu, u0=None, iters: int = 14):
+def line_crossing(flank: PlanarFlank, A, c, k, P0, nu, u0=None, iters: int = 8):
     """u where tooth k of a placed flank crosses the line through P0 along nu (guesses for the solves)."""
     u = np.zeros(len(P0)) if u0 is None else np.array(u0, float)
     lo, hi = flank.u_range
@@ -225,7 +225,7 @@ def mate_tooth(train: PlanetaryTrain, flank: PlanarFlank, P: Poses, body: str, c
     return nearest_tooth(c0, sg, flank.pitch_angle, flank.teeth, np.arctan2(d[:, 1], d[:, 0]))
 
 
-def corner_gap(fc: PlanarFlank, Ac, cc, kc, uc, fm: PlanarFlank, Am, cm, km, samples: int = 33, iters: int = 16):
+def corner_gap(fc: PlanarFlank, Ac, cc, kc, uc, fm: PlanarFlank, Am, cm, km, samples: int = 9, iters: int = 12):
     """Signed distance of the point u = uc of tooth kc of flank c from the working area of the mate flank.
 
     Negative: the point is inside the mate's tooth. The foot of the normal is searched in the mate's working area
