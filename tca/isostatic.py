@@ -36,21 +36,19 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
-from .dof import DOFCount
-from .errors import ConvergenceError, GeometryError, InputError
+from .errors import ConvergenceError, InputError
 from .isostatic_flank import apply, nearest_tooth, rot2
-from .isostatic_mesh import (BODY_CARRIER, BODY_RING, BODY_SUN, JT_CENTRES, Members, Poses, TrainFlanks,
-                             backlash_solve, corner_gap, line_crossing, mate_tooth, poses, subtrain_eval)
+from .isostatic_mesh import (BODY_CARRIER, BODY_RING, BODY_SUN, JT_CENTRES, Members, TrainFlanks, line_crossing,
+                             mate_tooth, poses, subtrain_eval)
+from .isostatic_result import ARCSEC, IsostaticResult, dominant_period, fit_circle
+from .isostatic_switch import switch_pairs
 from .isostatic_train import PlanetaryTrain
 from .newton import newton
 
-__all__ = ["IsostaticOptions", "IsostaticResult", "run_isostatic_tca", "phi1_grid", "fit_circle", "dominant_period"]
-
-ARCSEC = math.pi / (180 * 3600)
 _BODY = {"sun": BODY_SUN, "carrier": BODY_CARRIER, "ring": BODY_RING}
 
 
@@ -99,180 +97,6 @@ def phi1_grid(train: PlanetaryTrain, positions: int, *, sun_revolutions: float |
     return start + 2 * math.pi * sun * np.arange(positions) / positions
 
 
-def fit_circle(p: np.ndarray) -> tuple[np.ndarray, float]:
-    """Best-fit circle (centre (2,), radius) of points (n, 2): algebraic fit refined by Gauss-Newton on distances."""
-    p = np.asarray(p, float)
-    if len(p) < 3:
-        return p.mean(0), 0.0
-    scale = max(float(np.abs(p - p.mean(0)).max()), 1e-300)
-    q = (p - p.mean(0)) / scale
-    A = np.c_[q, np.ones(len(q))]
-    b = (q**2).sum(1)
-    sol, *_ = np.linalg.lstsq(A, b, rcond=None)
-    c = sol[:2] / 2
-    r2 = sol[2] + c @ c
-    if not (r2 > 0) or np.linalg.matrix_rank(A, 1e-9) < 3:
-        return p.mean(0), 0.0
-    r = math.sqrt(r2)
-    for _ in range(20):  # geometric refinement
-        d = q - c
-        L = np.linalg.norm(d, axis=1)
-        if np.any(L == 0):
-            break
-        res = L - r
-        Jm = np.c_[-d / L[:, None], -np.ones(len(q))]
-        step, *_ = np.linalg.lstsq(Jm, -res, rcond=None)
-        c, r = c + step[:2], r + step[2]
-        if np.abs(step).max() < 1e-14:
-            break
-    return c * scale + p.mean(0), abs(r) * scale
-
-
-def dominant_period(x: np.ndarray, y: np.ndarray, span: float) -> float | None:
-    """Period of the strongest sinusoid in y(x): least-squares fit of a + b cos + c sin over a scan of periods [units of x]."""
-    y = np.asarray(y, float) - np.mean(y)
-    if np.ptp(y) == 0 or len(x) < 8:
-        return None
-
-    def power(P):
-        w = 2 * math.pi * x / P
-        A = np.c_[np.ones_like(w), np.cos(w), np.sin(w)]
-        c, *_ = np.linalg.lstsq(A, y, rcond=None)
-        return float(np.sum((A[:, 1:] @ c[1:]) ** 2))
-
-    dx = float(np.median(np.diff(x)))
-    f = np.linspace(1 / span, min(40 / span, 0.25 / dx), 800)  # frequencies
-    pw = np.array([power(1 / fi) for fi in f])
-    k = int(np.argmax(pw))
-    lo, hi = f[max(k - 1, 0)], f[min(k + 1, len(f) - 1)]
-    g = (math.sqrt(5) - 1) / 2
-    a, b = lo, hi
-    for _ in range(60):  # golden-section refinement of the peak
-        c1, c2 = b - g * (b - a), a + g * (b - a)
-        if power(1 / c1) > power(1 / c2):
-            b = c2
-        else:
-            a = c1
-    return 2 / (a + b)
-
-
-@dataclass(frozen=True, eq=False)
-class IsostaticResult:
-    """Configuration of the train at every sun angle."""
-
-    train: PlanetaryTrain
-    options: IsostaticOptions
-    phi1: np.ndarray  # (n,) [rad]
-    phi_c: np.ndarray  # (n,) carrier angle [rad]
-    phi_c_planets: np.ndarray  # (n, Np) carrier angle of each subtrain (equal unless rigid hyperstatic)
-    te: np.ndarray  # (n,) Delta phi_c = phi_c - m_c1 phi1 (Eq. 3.23) [rad]
-    sun_center: np.ndarray  # (n, 2) [mm]
-    carrier_center: np.ndarray  # (n, 2) [mm]
-    ring_center: np.ndarray  # (n, 2) [mm]
-    phi2: np.ndarray  # (n, Np) planet rotation relative to the carrier [rad]
-    teeth: np.ndarray  # (n, Np, 4) contacting teeth: sun, planet (sun side), planet (ring side), ring (mod N)
-    params: np.ndarray  # (n, Np, 4) u of the four flanks at the contacts [mm]
-    point_s: np.ndarray  # (n, Np, 2) sun-planet contact point in S_f [mm]
-    point_r: np.ndarray  # (n, Np, 2) planet-ring contact point in S_f [mm]
-    margin: np.ndarray  # (n, Np, 2) depth of the contacts inside the working areas [mm]
-    backlash: np.ndarray  # (n, Np, 2, 2) backlash of the neighbouring pairs (mesh s/r, previous/next) [mm]
-    planet_backlash: np.ndarray  # (n, Np) backlash of a planet's loop along the sun's line of action [mm]
-    residual: np.ndarray  # (n,) max |F| of Eq. (3.18) over the subtrains [mm]
-    outer_iterations: np.ndarray  # (n,) iterations of Eq. (3.22)
-    rounds: int  # rounds of contact switching
-    rigid: bool  # all axes fixed and more planets than isostatic: planets may keep a backlash
-    dof: DOFCount
-    elapsed: float
-    _cache: dict = field(default_factory=dict, repr=False)
-
-    @property
-    def te_arcsec(self) -> np.ndarray:
-        return self.te / ARCSEC
-
-    @property
-    def carrier_te_peak_to_peak_arcsec(self) -> float:
-        return float(np.ptp(self.te_arcsec))
-
-    @property
-    def carrier_lag_mean_arcsec(self) -> float:
-        """Mean lag of the carrier, -mean(Delta phi_c) (positive: lagging) [arcsec]."""
-        return float(-self.te_arcsec.mean())
-
-    @property
-    def sun_center_um(self) -> np.ndarray:
-        return self.sun_center * 1e3
-
-    @property
-    def sun_circle(self) -> tuple[np.ndarray, float]:
-        """Best-fit circle of the sun centre trajectory: centre [um], radius [um]."""
-        if "circle" not in self._cache:
-            self._cache["circle"] = fit_circle(self.sun_center_um)
-        return self._cache["circle"]
-
-    @property
-    def all_planets_in_contact(self) -> bool:
-        """Every planet touches sun and ring at every position (within 1 nm of loop backlash)."""
-        return bool(np.all(self.planet_backlash < 1e-6) and np.all(self.margin >= -self.options.area_tol))
-
-    @property
-    def transitions(self) -> int:
-        """Changes of the contacting pair over the run, all meshes."""
-        return int(np.sum(np.any(np.diff(self.teeth, axis=0) != 0, axis=-1)))
-
-    @property
-    def positions_per_mesh_cycle(self) -> float | None:
-        """Sampling of the mesh cycles (a sun-mesh cycle is 1 / ((1 - m_c1) N1) sun revolutions)."""
-        if len(self.phi1) < 2:
-            return None
-        step = float(np.median(np.abs(np.diff(self.phi1)))) / (2 * math.pi)
-        return 1.0 / (step * (1 - self.train.ratio) * self.train.sun.teeth)
-
-    def te_period_sun_rev(self) -> float | None:
-        """Period of the strongest harmonic of the carrier TE [sun revolutions] (None if the TE is flat)."""
-        if self.carrier_te_peak_to_peak_arcsec < 1e-3:
-            return None
-        rev = (self.phi1 - self.phi1[0]) / (2 * math.pi)
-        span = float(rev[-1] + (rev[1] - rev[0] if len(rev) > 1 else 1.0))
-        return dominant_period(rev, self.te_arcsec, span)
-
-    def summary(self) -> dict:
-        """Key numbers (JSON-ready)."""
-        c, r = self.sun_circle
-        per = self.te_period_sun_rev()
-        mag = np.linalg.norm(self.sun_center_um, axis=1)
-        return {
-            "carrier_lag_mean_arcsec": self.carrier_lag_mean_arcsec,
-            "carrier_te_mean_arcsec": float(self.te_arcsec.mean()),
-            "carrier_te_peak_to_peak_arcsec": self.carrier_te_peak_to_peak_arcsec,
-            "carrier_te_min_arcsec": float(self.te_arcsec.min()),
-            "carrier_te_max_arcsec": float(self.te_arcsec.max()),
-            "te_period_sun_rev": per,
-            "sun_center_max_um": float(mag.max()),
-            "sun_center_min_um": float(mag.min()),
-            "sun_center_radius_um": float(r),
-            "sun_center_circle_center_um": [float(c[0]), float(c[1])],
-            "sun_center_peak_to_peak_um": [float(np.ptp(self.sun_center_um[:, 0])), float(np.ptp(self.sun_center_um[:, 1]))],
-            "all_planets_in_contact": self.all_planets_in_contact,
-            "planet_backlash_max_um": (self.planet_backlash.max(0) * 1e3).tolist(),
-            "dof": self.dof.as_dict(),
-            "rigid_hyperstatic": self.rigid,
-            "planets": self.train.n_planets,
-            "ratio_mc1": self.train.ratio,
-            "positions": int(len(self.phi1)),
-            "sun_revolutions": float((self.phi1[-1] - self.phi1[0]) / (2 * math.pi)) if len(self.phi1) > 1 else 0.0,
-            # below ~8, harmonics of the mesh frequency alias (the TE period then reflects the sampling)
-            "positions_per_mesh_cycle": self.positions_per_mesh_cycle,
-            "transitions": self.transitions,
-            "switch_rounds": self.rounds,
-            "min_contact_margin_mm": float(self.margin.min()),
-            "max_residual_mm": float(self.residual.max()),
-            "outer_iterations_max": int(self.outer_iterations.max()),
-            "method": self.options.method,
-            "elapsed_s": self.elapsed,
-        }
-
-
-# ---------------------------------------------------------------------------------------------
 def _check_mobility(train: PlanetaryTrain) -> bool:
     """Raise for set-ups that cannot be simulated; True when the train is rigid and hyperstatic."""
     d = train.dof
@@ -413,103 +237,6 @@ def _solve_direct(train, fl, m, x, E, free, opts, wpos):
     return x6, X[:, :nf].copy(), r.iterations
 
 
-def _switch(train, fl, m: Members, x, opts, wpos):
-    """Backlash of the neighbouring pairs (Eqs. 3.19-3.20) and the new contacting pairs.
-
-    Returns (teeth (M, 4), x guesses (M, 6), changed (M,), backlash (M, 2, 2)).
-    """
-    M = len(x)
-    Np = train.n_planets
-    F, J, P, mesh = subtrain_eval(train, fl, m, x, full=True)
-    teeth = m.teeth.copy()
-    xn = x.copy()
-    changed = np.zeros(M, bool)
-    backlash = np.full((M, 2, 2), np.nan)
-    specs = (  # (mesh, flank a, pose a, tooth col a, u col a, flank b, pose b, body b, centre b, col b, u col b)
-        (0, fl.sun, (P.As, P.cs), 0, 0, fl.planet_s, (P.Ap, P.cp), "planet", P.Op, 1, 1, mesh["point_s"], mesh["normal_s"]),
-        (1, fl.planet_r, (P.Ap, P.cp), 2, 2, fl.ring, (P.Ar, P.cr), "ring", m.T[:, BODY_RING], 3, 3, mesh["point_r"],
-         mesh["normal_r"]),
-    )
-    names = ("sun-planet", "planet-ring")
-    for (k, fa, (Aa, ca), ta, ua_c, fb, (Ab, cb), body_b, Ob, tb, ub_c, c0, nu) in specs:
-        ka = np.concatenate([m.teeth[:, ta] - 1, m.teeth[:, ta] + 1])
-        A2a, c2a = np.concatenate([Aa, Aa]), np.concatenate([ca, ca])
-        A2b, c2b = np.concatenate([Ab, Ab]), np.concatenate([cb, cb])
-        P2 = _stack_poses(P)
-        star = fa.place(A2a, c2a, ka, np.zeros(2 * M))[0]
-        kb = mate_tooth(train, fb, P2, body_b, np.concatenate([Ob, Ob]), star)
-        c02, nu2 = np.concatenate([c0, c0]), np.concatenate([nu, nu])
-        ua0 = line_crossing(fa, A2a, c2a, ka, c02, nu2)
-        ub0 = line_crossing(fb, A2b, c2b, kb, c02, nu2)
-        ua, ub, s, ok, mg = backlash_solve(fa, A2a, c2a, ka, fb, A2b, c2b, kb, ua0, ub0, opts.tol)
-        s = np.where(ok, s, np.nan).reshape(2, M).T  # (M, 2): previous, next
-        mg = mg.reshape(2, M).T
-        okk = ok.reshape(2, M).T
-        backlash[:, k] = s
-        cur_margin = mesh["margin"][:, k]
-        S = np.stack([s[:, 0], np.zeros(M), s[:, 1]], -1)
-        valid = np.stack([okk[:, 0] & (mg[:, 0] >= -opts.area_tol), cur_margin >= -opts.area_tol,
-                          okk[:, 1] & (mg[:, 1] >= -opts.area_tol)], -1)
-        marg = np.stack([mg[:, 0], cur_margin, mg[:, 1]], -1)
-        Sv = np.where(valid, S, np.inf)
-        smin = Sv.min(-1)
-        none = ~np.isfinite(smin)
-        if none.any():
-            i = int(np.flatnonzero(none)[0])
-            raise GeometryError(train.planet.name, "contact outside the working areas",
-                                f"{wpos(i // Np)}, planet {i % Np + 1}, {names[k]} mesh: the contact point and those "
-                                "of the neighbouring pairs leave the working areas (edge contact, not modelled by the "
-                                "planar TCA)")
-        # Neighbours whose common normal lies outside the working areas (or does not exist: extended profiles
-        # past the base circle) are no candidates. The bounded teeth could still touch, but then an end of a
-        # working area (tip or start of the fillet) enters the mate (the deepest point of two smooth profiles
-        # is a common normal or an end point): that is edge contact, which the planar TCA does not model.
-        inval = ~valid[:, [0, 2]]
-        if inval.any():
-            rows, cols = np.nonzero(inval)
-            idx = rows + cols * M
-            for fo, Ao, co, ko, fm_, Am, cm, km in ((fa, A2a, c2a, ka, fb, A2b, c2b, kb),
-                                                    (fb, A2b, c2b, kb, fa, A2a, c2a, ka)):
-                for ulim in (fo.u_form, fo.u_tip):
-                    gap, _ = corner_gap(fo, Ao[idx], co[idx], ko[idx], np.full(len(idx), ulim), fm_, Am[idx],
-                                        cm[idx], km[idx])
-                    bad = gap < -opts.tie_tol
-                    if bad.any():
-                        i = int(rows[np.argmax(bad)])
-                        where_end = "start of the fillet" if ulim == fo.u_form else "tip"
-                        raise GeometryError(train.planet.name, "edge contact",
-                                            f"{wpos(i // Np)}, planet {i % Np + 1}, {names[k]} mesh: the {where_end} of "
-                                            f"the {fo.gear.name}'s flank of a neighbouring pair enters the mate by "
-                                            f"{-gap[bad].min() * 1e3:.3f} um (edge contact, not modelled by the planar "
-                                            "TCA)")
-        tie = valid & (S <= smin[:, None] + opts.tie_tol)
-        choice = np.argmax(np.where(tie, marg, -np.inf), -1)
-        edge = ~valid[:, 1] & (choice != 1) & (S[np.arange(M), choice] > opts.tie_tol)
-        if edge.any():
-            i = int(np.flatnonzero(edge)[0])
-            raise GeometryError(train.planet.name, "edge contact",
-                                f"{wpos(i // Np)}, planet {i % Np + 1}, {names[k]} mesh: the contact leaves the "
-                                f"working areas while the next pair still has {S[i, choice[i]] * 1e3:.3f} um backlash "
-                                "(tip edge contact, not modelled by the planar TCA)")
-        for d, col in ((0, 0), (2, 1)):
-            sel = choice == d
-            if sel.any():
-                idx = np.flatnonzero(sel) + col * M
-                rows = np.flatnonzero(sel)
-                teeth[rows, ta] = ka[idx]
-                teeth[rows, tb] = kb[idx]
-                xn[rows, ua_c] = ua[idx]
-                xn[rows, ub_c] = ub[idx]
-                changed[rows] = True
-    return teeth, xn, changed, backlash
-
-
-def _stack_poses(P: Poses) -> Poses:
-    """The poses twice over (for the two neighbours of every member)."""
-    return Poses(*(np.concatenate([getattr(P, f), getattr(P, f)]) for f in
-                   ("As", "cs", "Ap", "cp", "Op", "Tc", "Ar", "cr", "q", "a")))
-
-
 def run_isostatic_tca(train: PlanetaryTrain, phi1, options: IsostaticOptions = IsostaticOptions()) -> IsostaticResult:
     """Configuration of the train (centres, carrier, planets, contacting teeth) at the sun angles phi1 [rad]."""
     t0 = time.perf_counter()
@@ -548,7 +275,7 @@ def run_isostatic_tca(train: PlanetaryTrain, phi1, options: IsostaticOptions = I
         x[mem], E[pos] = xs, Es
         outer_its[pos] += its
         m.T[mem] = mm.T
-        teeth, xn, changed, bl = _switch(train, fl, mm, xs, options, wpos)
+        teeth, xn, changed, bl = switch_pairs(train, fl, mm, xs, options, wpos)
         backlash[mem] = bl
         ch_pos = changed.reshape(-1, Np).any(-1)
         if not ch_pos.any():
