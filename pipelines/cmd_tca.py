@@ -24,6 +24,7 @@ __all__ = ["add_args", "handle", "run_case", "to_json", "KINDS"]
 KINDS = {
     "pair": "pipelines.tca_pair",
     "planetary": "pipelines.tca_planetary",
+    "isostatic": "pipelines.tca_isostatic",
 }
 
 
