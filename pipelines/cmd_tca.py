@@ -23,6 +23,7 @@ __all__ = ["add_args", "handle", "KINDS"]
 # case kind -> module in pipelines with run(case: Table, out: Path) -> dict (the summary)
 KINDS = {
     "pair": "pipelines.tca_pair",
+    "face_train": "pipelines.tca_face",
 }
 
 
