@@ -27,8 +27,15 @@ positions of simultaneous contact of two neighbouring pairs (Eqs. 2.7–2.8 and 
 :math:`G(\phi_{max}) = G(\phi_{max} - T_{dr}) + T_{dn}` (current and backward pair) — each evaluation
 of G an exact Newton solve, the root found by Brent's method; identical teeth give
 :math:`\phi_{max} = \phi_{min} + T_{dr}` (checked). The reference pair is in contact on
-:math:`[\phi_{min}, \phi_{max}]`; every contact point there is verified to lie inside both working
-areas (no edge contact). Transmission errors of the sub-drive (Fig. 2.3):
+:math:`[\phi_{min}, \phi_{max}]`.
+
+Bounded surfaces. Where the point of tangency leaves a working area across the face width (face
+gear: radius :math:`L_1` or :math:`L_2`; pinion: :math:`z_{min}`, :math:`z_{max}`), the flanks touch
+along that boundary instead (edge contact): :math:`r_1 = r_2`, :math:`c(u_e, v_e) = 0` and the boundary
+curve tangent to the other flank, :math:`n_o\cdot(c_v r_u - c_u r_v)_e = 0` (as in :mod:`tca.contact`,
+with a finite-difference Jacobian). A tangency point beyond a tip or root boundary ends the pair's
+contact (edge contact across the profile is not modelled; an error names it if it happens inside
+:math:`[\phi_{min}, \phi_{max}]`). Transmission errors of the sub-drive (Fig. 2.3):
 :math:`\Delta\phi_{dn} = \phi_{dn} - (N_{dr}/N_{dn})\phi_{dr}` [rad], absolute from the symmetric
 configuration.
 """
