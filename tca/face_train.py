@@ -52,7 +52,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
@@ -218,7 +218,6 @@ class FaceTrainResult:
     transitions: dict  # transition angles (report's names) [rad]
     branch_fractions: np.ndarray  # sizes of the branches of one cycle (fractions of the cycle)
     elapsed: float
-    extra: dict = field(default_factory=dict)
 
     @property
     def te_arcsec(self) -> np.ndarray:
@@ -388,7 +387,9 @@ def run_face_train(train: FaceTrain, cycles: int = 3, steps_per_cycle: int = 60,
             target = e + ch.ca - jA * ch.Tpa
             x = brentq(lambda x: float(G(x)) - target, ra.phi_min, ra.phi_max, xtol=1e-14) + jA * ch.Ta
             cusps += [x - 1e-10, x]
-    phi_in = np.sort(np.concatenate([phi_in, cusps]))
+    # the ends of the cycles of sub-drive 1 (its transitions), reached from the previous pair as well
+    ends = ra.phi_min + ch.Ta * np.arange(1, cycles + 1) - 1e-10
+    phi_in = np.sort(np.concatenate([phi_in, cusps, ends]))
     phi_p, phi_out, te, ja, jb, edge = ch.evaluate(phi_in, exact=True)
     trans = {
         "phi_in_min": ra.phi_min, "phi_in_max": ra.phi_max,
