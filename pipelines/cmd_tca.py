@@ -25,6 +25,7 @@ KINDS = {
     "pair": "pipelines.tca_pair",
     "planetary": "pipelines.tca_planetary",
     "isostatic": "pipelines.tca_isostatic",
+    "face_train": "pipelines.tca_face",
 }
 
 
