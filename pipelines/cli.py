@@ -18,6 +18,7 @@ __all__ = ["main", "SUBCOMMANDS"]
 # subcommand name -> module in pipelines implementing add_args(parser) and handle(args) -> int
 SUBCOMMANDS = {
     "tca": "pipelines.cmd_tca",
+    "mesh": "pipelines.cmd_mesh",
 }
 
 
