@@ -71,7 +71,7 @@ def member_pair(pair: GearPair, c: float) -> GearPair:
     a, b, ax = np.linalg.solve(A, delta)
     ms = pair.misalignment
     dx = a if pair.kind == "external" else -a  # gear 2's centre x is E + dE (external), -(E + dE) or E - dE
-    return pair.with_misalignment(d_center=ms.d_center + dx, d_ex=ms.d_ex + b, d_axial=ms.d_axial + ax)
+    return pair.with_misalignment(d_center=float(ms.d_center + dx), d_ex=float(ms.d_ex + b), d_axial=float(ms.d_axial + ax))
 
 
 def choose_position(tca: PairTCAResult, position) -> int:
