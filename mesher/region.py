@@ -9,6 +9,9 @@ boundary is then the flank down to the crossing point and the fillet from there,
 Newton's method on :math:`r_{flank}(u) = r_{fillet}(w)` in the transverse section.
 
 A fold is detected by the direction of the sampled fillet turning back (> 90° between chords).
+Folds that leave no single boundary curve (a second cusp, no crossing with the flank, or a flank
+reaching beyond the root circle — met with sharp tools, ``tool_tip_radius`` ≈ 0.1 m, on internal
+gears) are rejected with a :class:`~tca.errors.GeometryError` that says so.
 Sections of a helicoid at every z are the section at z = 0 turned by :math:`k z`, so the crossing
 parameters hold at every level; internal gears are never disk-crowned.
 """
@@ -21,7 +24,7 @@ from functools import lru_cache
 import numpy as np
 from scipy.spatial import cKDTree
 
-from tca.errors import ConvergenceError, GeometryError
+from tca.errors import GeometryError
 from tca.gear import Gear
 from tca.surfaces import HelicoidSurface
 
@@ -40,11 +43,16 @@ def fillet_start(gear: Gear, side: int) -> tuple[float, float, bool]:
     turn = np.abs(np.diff(np.unwrap(np.arctan2(d[:, 1], d[:, 0]))))
     cusp = np.flatnonzero(turn > 0.5 * math.pi)
     if len(cusp) == 0:
-        return float(u_form), float(w_j), False
+        return _checked(gear, side, float(u_form), float(w_j), False)
     if not isinstance(fi, HelicoidSurface):
         raise GeometryError(gear.name, "folded fillet",
                             f"the fillet of side {side:+d} folds near the flank on a crowned surface (not supported)")
+    advice = (f"the rack-generated fillet of side {side:+d} folds back over the flank and the tooth boundary is not "
+              f"one curve near the root (tool_tip_radius = {gear.tool_tip_radius} m); a larger tool tip radius or "
+              f"a smaller profile shift avoids it")
     k = int(cusp[0]) + 2  # first sample after the cusp
+    if np.any(turn[k:] > 0.5 * math.pi):
+        raise GeometryError(gear.name, "folded fillet", advice + " (two cusps)")
     span = 50 * np.linalg.norm(p[k] - p[0]) + 1e-3
     u = np.linspace(u_form, u_form + span, 2001)
     q = fl.points(u, np.zeros_like(u))[:, :2]
@@ -60,6 +68,23 @@ def fillet_start(gear: Gear, side: int) -> tuple[float, float, bool]:
         if np.abs(dx).max() < 1e-14:
             break
     res = float(np.linalg.norm((fl.points(x[0], 0.0) - fi.points(x[1], 0.0))[:2]))
-    if res > 1e-10 or not (u_form < x[0] < fl.u_range[1]) or not (fi.u_range[0] < x[1] < w_j):
-        raise ConvergenceError(f"{gear.name} fillet/flank crossing (side {side:+d})", f"(u, w) = {x.tolist()}", res, it + 1)
-    return float(x[0]), float(x[1]), True
+    if res > 1e-10 or not (u_form < x[0] < fl.u_range[1]) or not (fi.u_range[0] < x[1] < w[k]):
+        raise GeometryError(gear.name, "folded fillet", advice + f" (no crossing of fillet and flank found, "
+                            f"residual {res:.2e} mm at (u, w) = ({x[0]:.6g}, {x[1]:.6g}))")
+    return _checked(gear, side, float(x[0]), float(x[1]), True)
+
+
+def _checked(gear: Gear, side: int, u0: float, w0: float, folded: bool):
+    """The fillet from w0 must run from the flank start monotonically down to the root circle."""
+    fi, fl = gear.surface(side, "fillet"), gear.surface(side, "flank")
+    w = np.linspace(w0, fi.u_range[0], 401)
+    r = np.hypot(*fi.points(w, np.zeros_like(w))[:, :2].T)
+    r0 = float(np.hypot(*fl.points(u0, 0.0)[:2]))
+    k = gear.kappa
+    if k * (r0 - gear.r_root) <= 0 or np.any(k * np.diff(r) > 1e-9):
+        raise GeometryError(gear.name, "fillet beyond the root circle",
+                            f"the generated flank of side {side:+d} starts at radius {r0:.4f} mm and its fillet does not "
+                            f"run monotonically to the root circle {gear.r_root:.4f} mm, so the tooth boundary is not one "
+                            f"curve near the root (tool_tip_radius = {gear.tool_tip_radius} m, profile shift "
+                            f"{gear.profile_shift}); a larger tool tip radius or profile shift avoids it")
+    return u0, w0, folded

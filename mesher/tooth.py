@@ -8,9 +8,11 @@ circle :math:`r_a` (top land), the radial lines through the two space centres an
 ring lies outside its root circle). Surfaces are evaluated at their parameters (u, v = z), so every
 boundary node lies exactly on a tooth surface.
 
-Step 2 — auxiliary intermediate surfaces (Fig. 1.6(b)): the *mid-surface* through the tooth axis
-(angle :math:`\theta_c(z)`, halfway between the two space centres), the *base* surface joining the
-start of the fillet on each side to the mid-surface at the same radius (point :math:`Q_1`), and the
+Step 2 — auxiliary intermediate surfaces (Fig. 1.6(b)): the *mid-surface* of the tooth (in the
+rim at the angle :math:`\theta_c(z)` halfway between the two space centres; above the root halfway
+between the two flanks at the start of the fillets and at the tip, since crowned teeth twist a
+little relative to their root), the *base* surface joining the start of the fillet on each side to
+the mid-surface at the same radius (point :math:`Q_1`), and the
 *split* surface from the space centre :math:`Q_3` on the root circle down to the point
 :math:`M` on the mid-surface at depth :math:`d_M = \min(r_f \sin(\pi/N),\ 0.6\,h_{rim})` below the
 root (a 45° cut when the rim is deep enough). They cut the body into six logical hexahedra, three
@@ -34,7 +36,7 @@ meets tooth k on identical node rows.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -115,7 +117,6 @@ class ToothGeometry:
 
     gear: Gear
     rim_depth: float  # [mm] below the root circle (outside it for internal gears)
-    _cache: dict = field(default_factory=dict, init=False, repr=False)
 
     def __post_init__(self):
         g = self.gear
@@ -272,7 +273,6 @@ class ToothGeometry:
         zero = np.zeros(nz)
         rtip = np.full(nz, g.r_tip)
         rin = np.full(nz, r_in)
-        nA, nB = plan.n_flank, plan.n_fillet_root
         midfrac_A = np.mean([_fractions(flank[s]) for s in SIDES], axis=0).mean(0)
         midfrac_B = np.mean([_fractions(fr[s]) for s in SIDES], axis=0).mean(0)
         th_q1 = 0.5 * (F[1][:, 1] + F[-1][:, 1])  # the mid-surface follows the tooth (crowned teeth twist)
@@ -298,7 +298,6 @@ class ToothGeometry:
                 metric = tuple(_cart(e) for e in rows)
                 P = tfi(*rows, metric=metric)
                 out[name + sg] = _to_xyz(P, thc, z)
-        del nA, nB
         return out
 
 
