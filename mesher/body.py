@@ -34,6 +34,7 @@ from tca.gear import Gear
 
 from .grading import SizeField, count, distribute, uniform
 from .hexmesh import HEX_FACES, HexMesh, ReferencePoint
+from .quality import check_quality
 from .topology import SectionTopology
 from .tooth import BLOCKS, SIDES, ToothGeometry, ToothPlan
 
@@ -247,12 +248,13 @@ def _member(geom: ToothGeometry, teeth: list[int], plans: list[ToothPlan], z: np
 
 
 def mesh_gear(gear: Gear, opts: MeshOptions = MeshOptions(), centre: int = 0, focus: Focus | None = None,
-              name: str | None = None, member_offset: float | None = None) -> HexMesh:
+              name: str | None = None, member_offset: float | None = None, check: bool = True) -> HexMesh:
     """Hexahedral model of `opts.teeth` teeth of a gear centred on tooth `centre`, in the gear frame.
 
     `focus` (reference-tooth parameters) grades the mesh around the contact point of tooth `centre`.
     With ``opts.gap`` set the gear is double-helical: member a (this gear) at axial offset
     `member_offset` (default +(B + F)/2) and its mirror member b at the opposite offset.
+    With `check` (default) an element with det J <= 0 at a Gauss point raises a GeometryError.
     """
     body = name or gear.name
     sz = opts.sizes(gear)
@@ -307,5 +309,8 @@ def mesh_gear(gear: Gear, opts: MeshOptions = MeshOptions(), centre: int = 0, fo
         "loaded_side": None if focus is None else focus.side, "rim_radius_mm": ToothGeometry(gear, sz["rim"]).r_rim,
         "sizes_mm": sz, "members": info, "focus": None if focus is None else
         {"side": focus.side, "u_mm": focus.u, "z_mm": focus.z}}}}
-    return HexMesh(pts, cells, np.zeros(len(cells), np.int64), (body,), psets, fsets, ref, (), meta)
+    mesh = HexMesh(pts, cells, np.zeros(len(cells), np.int64), (body,), psets, fsets, ref, (), meta)
+    if check:
+        check_quality(mesh)
+    return mesh
 
