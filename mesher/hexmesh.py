@@ -13,6 +13,8 @@ that the Jacobian is positive. Local faces, listed with outward normals (right-h
 
 Face sets are arrays of (cell index, local face) pairs; node sets are sorted unique node indices.
 Names are ``"<body>/<set>"``, e.g. ``"planet/flank_drive"`` or ``"sun/rim"``.
+``contact_pairs`` lists (face set of body 1, face set of body 2) pairs that may come into contact,
+and ``meta`` carries JSON-ready facts about the model (see :mod:`mesher`).
 """
 
 from __future__ import annotations
@@ -25,7 +27,7 @@ import numpy as np
 
 from tca.errors import InputError
 
-__all__ = ["HEX_FACES", "HexMesh", "ReferencePoint"]
+__all__ = ["HEX_FACES", "HexMesh", "ReferencePoint", "merge_meshes"]
 
 HEX_FACES = np.array(
     [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]],
@@ -56,6 +58,8 @@ class HexMesh:
     point_sets: Mapping[str, np.ndarray] = field(default_factory=dict)
     face_sets: Mapping[str, np.ndarray] = field(default_factory=dict)
     reference_points: Mapping[str, ReferencePoint] = field(default_factory=dict)
+    contact_pairs: tuple[tuple[str, str], ...] = ()
+    meta: Mapping[str, object] = field(default_factory=dict)
 
     def __post_init__(self):
         pts = np.ascontiguousarray(self.points, dtype=np.float64)
@@ -82,6 +86,12 @@ class HexMesh:
             self, "face_sets", _frozen({k: np.asarray(v, np.int64).reshape(-1, 2) for k, v in (self.face_sets or {}).items()})
         )
         object.__setattr__(self, "reference_points", _frozen(self.reference_points))
+        object.__setattr__(self, "contact_pairs", tuple((str(a), str(b)) for a, b in self.contact_pairs))
+        object.__setattr__(self, "meta", _frozen(self.meta))
+        for a, b in self.contact_pairs:
+            for n in (a, b):
+                if n not in self.face_sets:
+                    raise InputError("contact_pairs", n, "names of face sets of the mesh")
 
     @property
     def n_points(self) -> int:
@@ -103,3 +113,37 @@ class HexMesh:
     def body_cells(self, body: str) -> np.ndarray:
         """Indices of the cells of one body."""
         return np.flatnonzero(self.cell_body == self.bodies.index(body))
+
+    def transformed(self, R, t) -> "HexMesh":
+        """Copy moved rigidly, x -> R x + t (proper rotation R, t [mm]); reference points follow."""
+        R = np.asarray(R, float).reshape(3, 3)
+        t = np.asarray(t, float).reshape(3)
+        if np.linalg.det(R) <= 0:
+            raise InputError("R", float(np.linalg.det(R)), "a proper rotation (det +1): a reflection inverts the hexahedra")
+        refs = {k: ReferencePoint(tuple(R @ np.asarray(v.point) + t), tuple(R @ np.asarray(v.axis)))
+                for k, v in self.reference_points.items()}
+        return HexMesh(self.points @ R.T + t, self.cells, self.cell_body, self.bodies, self.point_sets, self.face_sets,
+                       refs, self.contact_pairs, self.meta)
+
+
+def merge_meshes(meshes, contact_pairs=(), meta=None) -> HexMesh:
+    """One mesh holding the bodies of several meshes (body names must differ); nodes are not shared."""
+    pts, cells, body, bodies = [], [], [], []
+    psets, fsets, refs, pairs = {}, {}, {}, []
+    n0 = c0 = 0
+    for m in meshes:
+        for b in m.bodies:
+            if b in bodies:
+                raise InputError("bodies", b, "distinct body names in merged meshes")
+        pts.append(m.points)
+        cells.append(m.cells + n0)
+        body.append(m.cell_body + len(bodies))
+        bodies.extend(m.bodies)
+        psets.update({k: v + n0 for k, v in m.point_sets.items()})
+        fsets.update({k: v + np.array([c0, 0]) for k, v in m.face_sets.items()})
+        refs.update(m.reference_points)
+        pairs.extend(m.contact_pairs)
+        n0 += m.n_points
+        c0 += m.n_cells
+    return HexMesh(np.concatenate(pts), np.concatenate(cells), np.concatenate(body), tuple(bodies), psets, fsets,
+                   refs, tuple(pairs) + tuple(contact_pairs), dict(meta or {}))

@@ -19,6 +19,7 @@ __all__ = ["main", "SUBCOMMANDS"]
 SUBCOMMANDS = {
     "tca": "pipelines.cmd_tca",
     "sweep": "pipelines.cmd_sweep",
+    "mesh": "pipelines.cmd_mesh",
 }
 
 
