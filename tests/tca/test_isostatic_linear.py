@@ -139,7 +139,8 @@ def test_planar_subtrain_matches_the_3d_pair_tca():
 
 def test_longitudinal_crowning_does_not_change_the_3d_pair_te():
     # Table 3.1's pair in 3D with and without the plunging disk (a_l = 6.25e-5 1/mm, r_D = 100 mm): same TE
-    # within 1e-6 arcsec (measured 5e-9), 13.89 arcsec peak-to-peak in planet angle
+    # within 1e-6 arcsec (measured 5e-9); 14.108 arcsec peak-to-peak in planet angle with the transitions
+    # solved exactly (a grid of 2000 positions per cycle approaches it: 14.104; 40 positions give 13.89)
     from tca.crowning import DiskPlunge
 
     sun = Gear("sun", 65, 4.0, d(20), 40)
@@ -147,7 +148,7 @@ def test_longitudinal_crowning_does_not_change_the_3d_pair_te():
     a = run_pair_tca(GearPair(sun, p))
     b = run_pair_tca(GearPair(sun, dataclasses.replace(p, plunge=DiskPlunge(100.0, 6.25e-5))))
     assert np.abs(a.te_arcsec - b.te_arcsec).max() < 1e-6
-    assert a.te_peak_to_peak_arcsec == pytest.approx(13.89, abs=0.02)
+    assert a.te_peak_to_peak_arcsec == pytest.approx(14.108, abs=0.002)
 
 
 def test_radial_pin_error_has_no_effect_on_an_involute_train():
