@@ -36,6 +36,7 @@ from .body import Focus, MeshOptions, mesh_gear, model_teeth, plan_tooth
 from .export import abaqus_name, gmsh_quality, inp_names, to_meshio, write_inp, write_msh, write_vtu
 from .hexmesh import HEX_FACES, HexMesh, ReferencePoint, merge_meshes
 from .pair_model import PairModel, choose_position, member_pair, mesh_pair
+from .parts import join_parts
 from .quality import Quality, check_conformity, check_quality, element_volumes, face_counts, quality
 from .tooth import ToothGeometry, ToothPlan
 from .volume import section_area, tooth_region_volume
@@ -43,7 +44,7 @@ from .volume import section_area, tooth_region_volume
 __all__ = [
     "Focus", "HEX_FACES", "HexMesh", "MeshOptions", "PairModel", "Quality", "ReferencePoint", "ToothGeometry",
     "ToothPlan", "abaqus_name", "check_conformity", "check_quality", "choose_position", "element_volumes",
-    "face_counts", "gmsh_quality", "inp_names", "member_pair", "merge_meshes", "mesh_gear", "mesh_pair",
+    "face_counts", "gmsh_quality", "inp_names", "join_parts", "member_pair", "merge_meshes", "mesh_gear", "mesh_pair",
     "model_teeth", "plan_tooth", "quality", "section_area", "to_meshio", "tooth_region_volume", "write_inp",
     "write_msh", "write_vtu",
 ]

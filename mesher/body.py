@@ -52,11 +52,12 @@ class MeshOptions:
     fillet_size: float | None = None  # [mm] on the loaded tooth's fillets; default 1.5 * contact_size
     growth: float = 1.3  # size ratio of neighbouring elements away from the focus
     gap: float | None = None  # [mm] gap F between double-helical members; None: single member
+    axial_contact_size: float | None = None  # [mm] of the axial levels at the contact; default contact_size
 
     def __post_init__(self):
         if not (isinstance(self.teeth, int) and self.teeth >= 1):
             raise InputError("mesh.teeth", self.teeth, "an integer >= 1")
-        for k in ("rim_depth", "coarse_size", "contact_size", "fillet_size"):
+        for k in ("rim_depth", "coarse_size", "contact_size", "fillet_size", "axial_contact_size"):
             v = getattr(self, k)
             if v is not None and not (v > 0 and math.isfinite(v)):
                 raise InputError(f"mesh.{k}_mm", v, "> 0 mm")
@@ -75,21 +76,34 @@ class MeshOptions:
             raise InputError("mesh.contact_size_mm", contact, f"<= coarse_size_mm {coarse:g}")
         if fillet > coarse:
             raise InputError("mesh.fillet_size_mm", fillet, f"<= coarse_size_mm {coarse:g}")
+        axial = self.axial_contact_size if self.axial_contact_size is not None else contact
+        if axial > coarse:
+            raise InputError("mesh.axial_contact_size_mm", axial, f"<= coarse_size_mm {coarse:g}")
         rim = self.rim_depth if self.rim_depth is not None else 3.0 * m
-        return {"coarse": coarse, "contact": contact, "fillet": fillet, "rim": rim, "growth": self.growth}
+        return {"coarse": coarse, "contact": contact, "fillet": fillet, "rim": rim, "growth": self.growth, "axial": axial}
 
 
 @dataclass(frozen=True)
 class Focus:
-    """The loaded flank's contact point: side (+1/-1), flank parameter u [mm], level z [mm] (reference tooth)."""
+    """The loaded flank's contact point: side (+1/-1), flank parameter u [mm], level z [mm] (reference tooth).
+
+    ``extent_u`` / ``extent_z`` [mm]: half-lengths (along the flank profile / the axis) of a zone
+    around the point kept at the contact sizes before the growth starts (e.g. a contact ellipse).
+    """
 
     side: int
     u: float
     z: float
+    extent_u: float = 0.0
+    extent_z: float = 0.0
 
     def __post_init__(self):
         if self.side not in (1, -1):
             raise InputError("focus.side", self.side, "+1 or -1")
+        for k in ("extent_u", "extent_z"):
+            v = getattr(self, k)
+            if not (v >= 0.0 and math.isfinite(v)):
+                raise InputError(f"focus.{k}_mm", v, ">= 0 mm")
 
 
 def _table_param(table, frac):
@@ -120,7 +134,7 @@ def plan_tooth(geom: ToothGeometry, sz: dict, z_ref: float, focus: Focus | None,
             u0, u1 = flank_t[s][0][0], flank_t[s][0][-1]
             uc = min(max(focus.u, u0), u1)
             sc = float(np.interp(uc, flank_t[s][0], flank_t[s][1]))
-            fields[s], pins[s] = SizeField(c, sz["contact"], sc, q), uc
+            fields[s], pins[s] = SizeField(c, sz["contact"], sc, q, focus.extent_u), uc
         else:
             fields[s] = SizeField(c)
     n_fl = max(count(flank_t[s][1][-1], fields[s], 3) for s in SIDES)
@@ -273,7 +287,8 @@ def mesh_gear(gear: Gear, opts: MeshOptions = MeshOptions(), centre: int = 0, fo
     for mi, (gm, off, fc) in enumerate(members):
         geom = ToothGeometry(gm, sz["rim"])
         z_ref = 0.0 if fc is None else min(max(fc.z, -0.5 * B), 0.5 * B)
-        zf = SizeField(sz["coarse"]) if fc is None else SizeField(sz["coarse"], sz["contact"], z_ref + 0.5 * B, sz["growth"])
+        zf = SizeField(sz["coarse"]) if fc is None else SizeField(sz["coarse"], sz["axial"], z_ref + 0.5 * B, sz["growth"],
+                                                                  fc.extent_z)
         z = -0.5 * B + B * distribute(B, zf, nmin=2, pin=fc is not None)
         if fc is not None:
             _pin(z, int(np.argmin(np.abs(z - z_ref))), z_ref)
@@ -308,7 +323,8 @@ def mesh_gear(gear: Gear, opts: MeshOptions = MeshOptions(), centre: int = 0, fo
         "gear": gear.name, "teeth": teeth, "loaded_tooth": teeth[ci] if focus is not None else None,
         "loaded_side": None if focus is None else focus.side, "rim_radius_mm": ToothGeometry(gear, sz["rim"]).r_rim,
         "sizes_mm": sz, "members": info, "focus": None if focus is None else
-        {"side": focus.side, "u_mm": focus.u, "z_mm": focus.z}}}}
+        {"side": focus.side, "u_mm": focus.u, "z_mm": focus.z, "extent_u_mm": focus.extent_u,
+         "extent_z_mm": focus.extent_z}}}}
     mesh = HexMesh(pts, cells, np.zeros(len(cells), np.int64), (body,), psets, fsets, ref, (), meta)
     if check:
         check_quality(mesh)

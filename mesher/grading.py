@@ -3,10 +3,11 @@ r"""One-dimensional node distributions driven by a target element size and a gro
 A focus point :math:`x_c` with target size :math:`h_c`, growth ratio :math:`q` and largest size
 :math:`h_{max}` define the size function
 
-.. math:: h(x) = \min\left(h_{max},\ h_c + (q - 1)\,|x - x_c|\right),
+.. math:: h(x) = \min\left(h_{max},\ h_c + (q - 1)\,\max(|x - x_c| - w, 0)\right),
 
 which is the continuous form of a geometric progression (element :math:`k` away from the focus
-has size :math:`\approx h_c q^k`). Nodes are equidistributed in :math:`F(x) = \int_0^x dx'/h(x')`:
+has size :math:`\approx h_c q^k`); :math:`w` (``plateau``, default 0) keeps the size :math:`h_c`
+over a zone of half-width :math:`w` around the focus (e.g. a contact ellipse). Nodes are equidistributed in :math:`F(x) = \int_0^x dx'/h(x')`:
 with :math:`n = \lceil F(L) \rceil` elements, :math:`x_k = F^{-1}(k F(L)/n)`, so every element is at
 most its target size. A *pinned* focus is made a node exactly (each side gets its own count),
 which places a node on the TCA contact point; a focus closer than :math:`h_c/2` to an end of the
@@ -35,6 +36,7 @@ class SizeField:
     h_focus: float | None = None
     focus: float | None = None  # position along the edge [mm]
     growth: float = 1.25
+    plateau: float = 0.0  # half-width [mm] of the zone of size h_focus around the focus
 
     def __post_init__(self):
         if not (self.h_max > 0):
@@ -43,12 +45,15 @@ class SizeField:
             raise InputError("mesh.contact_size_mm", self.h_focus, f"in (0, coarse size {self.h_max:g}] mm")
         if not (1.0 <= self.growth <= 3.0):
             raise InputError("mesh.growth", self.growth, "in [1, 3]")
+        if not (self.plateau >= 0.0 and math.isfinite(self.plateau)):
+            raise InputError("mesh.plateau_mm", self.plateau, ">= 0 mm")
 
     def __call__(self, x) -> np.ndarray:
         x = np.asarray(x, float)
         if self.h_focus is None or self.focus is None:
             return np.full_like(x, self.h_max)
-        return np.minimum(self.h_max, self.h_focus + (self.growth - 1.0) * np.abs(x - self.focus))
+        d = np.maximum(np.abs(x - self.focus) - self.plateau, 0.0)
+        return np.minimum(self.h_max, self.h_focus + (self.growth - 1.0) * d)
 
 
 def _cumulative(length: float, h: SizeField):

@@ -20,6 +20,7 @@ SUBCOMMANDS = {
     "tca": "pipelines.cmd_tca",
     "sweep": "pipelines.cmd_sweep",
     "mesh": "pipelines.cmd_mesh",
+    "stress": "pipelines.cmd_stress",
 }
 
 
