@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.interpolate import CubicSpline
@@ -458,7 +458,6 @@ def _bounded_contacts(pair, f1, f2, phis, sel, phi2_guess, opts, samples: int = 
     out_where = np.zeros(n, int)
     out_res = np.full(n, np.nan)
     flanks = (f1, f2)
-    m1, m2 = f1.mount, f2.mount
     for fl in (1, 2):
         fi, fo = flanks[fl - 1], flanks[2 - fl]
         u_of_r = _u_of_radius(fo)
