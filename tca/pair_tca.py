@@ -445,7 +445,7 @@ def _boundary_param(flank: PlacedFlank, b: int):
     return (ar.u_form, u_end), lambda t: np.stack([np.asarray(t, float), np.full(np.shape(t), zb)], -1)
 
 
-def _bounded_contacts(pair, f1, f2, phis, sel, phi2_guess, opts, samples: int = 13):
+def _bounded_contacts(pair, f1, f2, phis, sel, phi2_guess, opts, samples: int = 9):
     """First touch of the bounded flanks along their boundaries, where tangency is not inside.
 
     For every physical boundary (tip, z_max, z_min) of both flanks, points sampled along it are
