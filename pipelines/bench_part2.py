@@ -13,7 +13,6 @@ import platform
 import time
 from pathlib import Path
 
-import numpy as np
 
 from tca.face_gear import FaceGear
 from tca.face_mesh import ARCSEC

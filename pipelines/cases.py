@@ -37,12 +37,12 @@ from pathlib import Path
 from tca.crowning import DiskPlunge
 from tca.errors import GearfeError, InputError
 from tca.gear import Gear
-from tca.pair import Misalignment
+from tca.pair import GearPair, Misalignment
 from tca.pair_tca import TCAOptions
 
 from .schema import Table
 
-__all__ = ["load_case", "read_gear", "read_gears", "read_misalignment", "read_tca_options", "CASES_DIR"]
+__all__ = ["load_case", "read_gear", "read_gears", "read_pair", "read_misalignment", "read_tca_options", "CASES_DIR"]
 
 CASES_DIR = Path(__file__).parent / "cases"
 ARCMIN = math.radians(1 / 60)
@@ -132,6 +132,19 @@ def read_tca_options(t: Table | None) -> TCAOptions:
     )
     t.done()
     return o
+
+
+def read_pair(case: Table, gears: dict[str, Gear]) -> tuple[GearPair, str, str]:
+    """The pair named by ``driver``/``driven`` with its ``[misalignment]`` and ``center_distance_mm``."""
+    names = tuple(gears)
+    driver = case.get("driver", str, choices=names)
+    driven = case.get("driven", str, choices=names)
+    if driver == driven:
+        raise InputError("driven", driven, f"a gear other than the driver {driver!r}")
+    cd = case.get("center_distance_mm", float, None, lo=0.0, lo_open=True)
+    pair = GearPair(gears[driver], gears[driven], read_misalignment(case.table("misalignment", required=False)),
+                    center_distance=cd)
+    return pair, driver, driven
 
 
 def gear_ref(case: Table, gears: dict[str, Gear], key: str) -> Gear:

@@ -24,16 +24,15 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import time
 from pathlib import Path
 
 import numpy as np
 
 from tca.errors import InputError
-from tca.pair import GearPair
 
-from .cases import CASES_DIR, load_case, read_gears, read_misalignment, read_tca_options
+from .cases import CASES_DIR, load_case, read_gears, read_pair, read_tca_options
+from .cmd_tca import to_json
 from .outdir import staged_output
 from .schema import Table
 
@@ -99,14 +98,7 @@ def build(case: Table, path: Path):
                 raise InputError(k, case.data[k], "no pair keys in a case that meshes one gear (gear = ...)")
         mesh = mesh_gear(gears[gear_name], opts)
         return mesh, {"gear": gear_name}, et
-    names = tuple(gears)
-    driver = src.get("driver", str, choices=names)
-    driven = src.get("driven", str, choices=names)
-    if driver == driven:
-        raise InputError("driven", driven, f"a gear other than the driver {driver!r}")
-    cd = src.get("center_distance_mm", float, None, lo=0.0, lo_open=True)
-    pair = GearPair(gears[driver], gears[driven], read_misalignment(src.table("misalignment", required=False)),
-                    center_distance=cd)
+    pair, driver, driven = read_pair(src, gears)
     tca_opts = read_tca_options(src.table("tca", required=False))
     if case.has("position") and isinstance(case.data["position"], int) and not isinstance(case.data["position"], bool):
         pos = case.get("position", int)  # range-checked against the TCA positions by mesh_pair
@@ -154,22 +146,10 @@ def handle(args) -> int:
             "files": ["mesh.vtu", "mesh.inp", "mesh.msh", "summary.json"],
             "mesh_s": t_mesh, "elapsed_s": time.perf_counter() - t0, "cpu_s": time.process_time() - c0,
         }
-        (tmp / "summary.json").write_text(json.dumps(summary, indent=2, default=_json) + "\n")
+        (tmp / "summary.json").write_text(json.dumps(summary, indent=2, default=to_json) + "\n")
     for k in ("elements", "nodes", "min_scaled_jacobian", "max_aspect_ratio", "contact_node_gap_mm", "elapsed_s"):
         if k in summary:
             v = summary[k]
             print(f"  {k:<22}  {v:.6g}" if isinstance(v, float) else f"  {k:<22}  {v}")
     print(f"results in {args.out}/")
     return 0
-
-
-def _json(x):
-    if isinstance(x, (np.floating, np.integer)):
-        return x.item()
-    if isinstance(x, np.ndarray):
-        return x.tolist()
-    if isinstance(x, np.bool_):
-        return bool(x)
-    if isinstance(x, float) and not math.isfinite(x):
-        return None
-    raise InputError("summary", type(x).__name__, "JSON-serialisable values")

@@ -13,7 +13,7 @@ import numpy as np  # noqa: E402
 
 from tca.pair_tca import ARCSEC, ContactKind, PairTCAResult, ellipse_outlines  # noqa: E402
 
-__all__ = ["plot_pair_te", "plot_contact_paths", "savefig"]
+__all__ = ["plot_pair_te", "plot_contact_paths", "savefig", "side_by_side"]
 
 
 def savefig(fig, path: Path) -> Path:
@@ -79,4 +79,20 @@ def plot_contact_paths(r: PairTCAResult, path: Path, names=("gear 1", "gear 2"))
         ax.set_ylabel("radius [mm]")
         ax.grid(alpha=0.3)
     fig.suptitle("Paths of contact and contact ellipses")
+    return savefig(fig, path)
+
+
+def side_by_side(images: list[Path], titles: list[str], path: Path, suptitle: str = "") -> Path:
+    """Images placed side by side with titles (as Fig. 1.9 (a) and (b))."""
+    import matplotlib.image as mpimg
+
+    fig, axes = plt.subplots(1, len(images), figsize=(7 * len(images), 5.2))
+    axes = np.atleast_1d(axes)
+    for ax, img, title in zip(axes, images, titles):
+        ax.imshow(mpimg.imread(str(img)))
+        ax.set_title(title)
+        ax.axis("off")
+    if suptitle:
+        fig.suptitle(suptitle)
+    fig.tight_layout()
     return savefig(fig, path)

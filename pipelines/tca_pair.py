@@ -13,11 +13,9 @@ from pathlib import Path
 
 import numpy as np
 
-from tca.errors import InputError
-from tca.pair import GearPair
 from tca.pair_tca import ContactKind, run_pair_tca
 
-from .cases import read_gears, read_misalignment, read_tca_options
+from .cases import read_gears, read_pair, read_tca_options
 from .plots import plot_contact_paths, plot_pair_te
 from .schema import Table
 
@@ -25,15 +23,7 @@ __all__ = ["run", "write_pair_csv"]
 
 
 def run(case: Table, out: Path) -> dict:
-    gears = read_gears(case)
-    names = tuple(gears)
-    driver = case.get("driver", str, choices=names)
-    driven = case.get("driven", str, choices=names)
-    if driver == driven:
-        raise InputError("driven", driven, f"a gear other than the driver {driver!r}")
-    cd = case.get("center_distance_mm", float, None, lo=0.0, lo_open=True)
-    pair = GearPair(gears[driver], gears[driven], read_misalignment(case.table("misalignment", required=False)),
-                    center_distance=cd)
+    pair, driver, driven = read_pair(case, read_gears(case))
     opts = read_tca_options(case.table("tca", required=False))
     r = run_pair_tca(pair, opts)
     write_pair_csv(r, out / "tca.csv")

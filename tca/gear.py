@@ -280,7 +280,6 @@ class Gear:
         """Reject undercut, singular points in the working area, pointed teeth, tip below the fillet."""
         angles = {}
         for side in (1, -1):
-            seg = self.segments(side)["flank"]
             ar = self.area(side)
             if self.kappa * (ar.r_tip - ar.r_form) <= 0:
                 raise GeometryError(
@@ -291,7 +290,6 @@ class Gear:
             us = np.linspace(ar.u_form, ar.u_tip, 400)
             g, g1 = self._profile(side, us)
             radial = self.kappa * np.einsum("...i,...i", g, g1) / np.linalg.norm(g, axis=-1)
-            speed = np.linalg.norm(g1, axis=-1)
             bad = radial <= 0.0
             if bad.any():
                 i = int(np.flatnonzero(bad)[-1])  # the fold (cusp) ends at the last sample that runs backwards

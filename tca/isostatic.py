@@ -44,7 +44,7 @@ from .errors import ConvergenceError, InputError
 from .isostatic_flank import apply, nearest_tooth, rot2
 from .isostatic_mesh import (BODY_CARRIER, BODY_RING, BODY_SUN, JT_CENTRES, Members, TrainFlanks, line_crossing,
                              mate_tooth, poses, subtrain_eval)
-from .isostatic_result import ARCSEC, IsostaticResult, dominant_period, fit_circle
+from .isostatic_result import ARCSEC, IsostaticResult, dominant_period, fit_circle  # noqa: F401  (re-exported)
 from .isostatic_switch import switch_pairs
 from .isostatic_train import PlanetaryTrain
 from .newton import newton

@@ -51,6 +51,8 @@ def _iterate(x, idx_all, fun, res_fn, step_fn, stop_fn, maxiter, its, max_backtr
         # a member whose merit did not halve over the last 4 iterations has stalled (no solution nearby)
         if it >= 4:
             stalled |= merit > 0.5 * history[-4]
+        # a member whose residual or Jacobian is not finite has left the surfaces: it fails, others go on
+        stalled |= ~(np.isfinite(F).all(-1) & np.isfinite(J).reshape(len(J), -1).all(-1))
         active = ~stop_fn(F, merit) & ~stalled
         if skip is not None:
             active &= ~skip
@@ -68,7 +70,8 @@ def _iterate(x, idx_all, fun, res_fn, step_fn, stop_fn, maxiter, its, max_backtr
             xt = xa[p] + alpha[p, None] * dx[p]
             Ft, Jt = fun(xt, ia[p])
             mt = res_fn(xt, Ft, ia[p])
-            ok = (mt < m0[p] * (1 - 1e-4 * alpha[p]) + 1e-300) | stop_fn(Ft, mt)
+            finite = np.isfinite(Ft).all(-1) & np.isfinite(Jt).reshape(len(Jt), -1).all(-1)
+            ok = ((mt < m0[p] * (1 - 1e-4 * alpha[p]) + 1e-300) | stop_fn(Ft, mt)) & finite
             good = p[ok]
             xa[good], Fn[good], Jn[good], Mn[good] = xt[ok], Ft[ok], Jt[ok], mt[ok]
             pending[good] = False
@@ -79,7 +82,12 @@ def _iterate(x, idx_all, fun, res_fn, step_fn, stop_fn, maxiter, its, max_backtr
             p = np.flatnonzero(pending)
             xt = xa[p] + alpha[p, None] * dx[p]
             Ft, Jt = fun(xt, ia[p])
-            xa[p], Fn[p], Jn[p], Mn[p] = xt, Ft, Jt, res_fn(xt, Ft, ia[p])
+            Mt = res_fn(xt, Ft, ia[p])
+            finite = np.isfinite(Ft).all(-1) & np.isfinite(Jt).reshape(len(Jt), -1).all(-1) & np.isfinite(Mt)
+            q = p[finite]  # a non-finite trial keeps the last iterate; stall detection ends it
+            xa[q], Fn[q], Jn[q], Mn[q] = xt[finite], Ft[finite], Jt[finite], Mt[finite]
+            r = p[~finite]
+            Fn[r], Jn[r], Mn[r] = F[ia[r]], J[ia[r]], merit[ia[r]]
         x[ia], F[ia], J[ia], merit[ia] = xa, Fn, Jn, Mn
         its[ia] += 1
         history.append(merit.copy())
@@ -126,9 +134,12 @@ def newton(
             return np.abs(F).max(-1) < 1e-8
 
         # the preferred point only matters where the Jacobian is (nearly) singular
-        _, J0 = fun(x, idx_all)
-        sv = np.linalg.svd(J0, compute_uv=False)
-        regular = sv[:, -1] > 1e-7 * sv[:, 0]
+        F0, J0 = fun(x, idx_all)
+        finite = np.isfinite(F0).all(-1) & np.isfinite(J0).reshape(n, -1).all(-1)
+        regular = ~finite  # non-finite members fail in the Newton phase
+        if finite.any():
+            sv = np.linalg.svd(J0[finite], compute_uv=False)
+            regular[finite] = sv[:, -1] > 1e-7 * sv[:, 0]
         if not regular.all():
             _iterate(x, idx_all, fun, aug_merit, gn_step, gn_stop, maxiter // 2, its, max_backtracks, skip=regular)
 

@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.interpolate import CubicSpline
@@ -290,7 +290,9 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
             hist = [i0]
             stop = False
             while not stop:
-                targets = [hist[-1] + direction * c * (q + 1) for q in range(block)]
+                # blocks grow with the history: a single known point extrapolates poorly
+                size = min(block, 2 * len(hist) - 1)
+                targets = [hist[-1] + direction * c * (q + 1) for q in range(size)]
                 targets = [i for i in targets if 0 <= i < n]
                 if not targets:
                     break
@@ -353,14 +355,16 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
             total_its += int(r.iterations.sum())
             good = r.converged & _in_domain(f1, f2, r.x)
             X[fine[good]], tan_ok[fine[good]] = r.x[good], True
-            for q in np.flatnonzero(~good):  # second chance: from the nearest solved neighbour
+            for q in np.flatnonzero(~good):
                 i = fine[q]
                 nb = coarse[np.argmin(np.abs(coarse - i))]
+                if not deep(X[nb]):
+                    continue  # near the end of the mesh: the bounded search takes over
+                # second chance from the nearest solved neighbour: a failure here is an error
                 xs, conv, res, its = _solve_one(tangency_system(f1, f2, np.array([phis[i]])), X[nb], opts.tol, prefer)
-                if conv and _in_domain(f1, f2, xs[None])[0]:
-                    X[i], tan_ok[i] = xs, True
-                elif deep(X[nb]):
+                if not (conv and _in_domain(f1, f2, xs[None])[0]):
                     raise ConvergenceError("pair TCA (tangency)", f"phi1 = {math.degrees(phis[i]):.6f} deg", res, its)
+                X[i], tan_ok[i] = xs, True
 
     kind = np.zeros(n, int)
     where = np.zeros(n, int)
@@ -441,7 +445,7 @@ def _boundary_param(flank: PlacedFlank, b: int):
     return (ar.u_form, u_end), lambda t: np.stack([np.asarray(t, float), np.full(np.shape(t), zb)], -1)
 
 
-def _bounded_contacts(pair, f1, f2, phis, sel, phi2_guess, opts, samples: int = 13):
+def _bounded_contacts(pair, f1, f2, phis, sel, phi2_guess, opts, samples: int = 9):
     """First touch of the bounded flanks along their boundaries, where tangency is not inside.
 
     For every physical boundary (tip, z_max, z_min) of both flanks, points sampled along it are
@@ -458,7 +462,6 @@ def _bounded_contacts(pair, f1, f2, phis, sel, phi2_guess, opts, samples: int = 
     out_where = np.zeros(n, int)
     out_res = np.full(n, np.nan)
     flanks = (f1, f2)
-    m1, m2 = f1.mount, f2.mount
     for fl in (1, 2):
         fi, fo = flanks[fl - 1], flanks[2 - fl]
         u_of_r = _u_of_radius(fo)
@@ -642,15 +645,18 @@ def _transitions(pair, f1, f2, ref, J, s, opts, phi1, cand, a, ks, kind_c):
     h = pitch / s
     j0 = ref.j[J]
 
-    def solve(phi, kcol):
-        k = ks[kcol]
-        phr = phi - k * pitch
+    def solve(phi, kcol_a, kcol_b):
+        """TE of pairs ka and kb at phi, in one batched Newton solve."""
+        k = np.concatenate([ks[kcol_a], ks[kcol_b]])
+        phr = np.concatenate([phi, phi]) - k * pitch
         jf = (phr - ref.phi1[J]) / h + j0 + J
         jl = np.clip(np.floor(jf).astype(int), 0, len(ref.j) - 2)
         w = (jf - jl)[:, None]
         guess = ref.x[jl] * (1 - w) + ref.x[jl + 1] * w
         r = newton(tangency_system(f1, f2, phr), guess, tol=opts.tol, maxiter=30, raise_on_failure=False)
-        return r.x[:, 4] - ratio * phr, r.converged
+        te, conv = r.x[:, 4] - ratio * phr, r.converged
+        m = len(phi)
+        return te[:m], conv[:m], te[m:], conv[m:]
 
     xa, xb = lo[sel].copy(), hi[sel].copy()
     fa, fb = ga[sel].copy(), gb[sel].copy()
@@ -660,8 +666,7 @@ def _transitions(pair, f1, f2, ref, J, s, opts, phi1, cand, a, ks, kind_c):
     tem = t_te[sel].copy()
     for _ in range(40):
         xm = np.where(fa != fb, (xa * fb - xb * fa) / np.where(fa != fb, fb - fa, 1.0), 0.5 * (xa + xb))
-        ta, ca = solve(xm, ka[sel])
-        tb, cb = solve(xm, kb[sel])
+        ta, ca, tb, cb = solve(xm, ka[sel], kb[sel])
         ok &= ca & cb
         fm = ta - tb
         tem = ta

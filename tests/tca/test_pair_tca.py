@@ -131,3 +131,14 @@ def test_two_full_cycles_and_transitions(planet):
     assert r.transitions[1] - r.transitions[0] == pytest.approx(2 * math.pi / 41, rel=1e-3)
     # the contact ellipse exists (point contact) and is a few mm long
     assert np.all(np.isfinite(r.ellipse_a)) and 0.5 < np.nanmax(r.ellipse_a) < 15
+
+
+def test_newton_isolates_a_member_that_leaves_the_domain():
+    # sqrt(x) - 2 = 0: a member started at x < 0 has a non-finite residual and fails on its own
+    def fun(x, idx):
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return np.sqrt(x) - 2.0, (0.5 / np.sqrt(x))[:, :, None]
+
+    r = newton(fun, np.array([[1.0], [-1.0], [9.0]]), raise_on_failure=False)
+    assert list(r.converged) == [True, False, True]
+    assert np.allclose(r.x[[0, 2], 0], 4.0)
