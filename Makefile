@@ -17,8 +17,14 @@ $(VENV)/.installed: pyproject.toml
 	$(BIN)/python -m pip install --quiet -e '.[test]'
 	touch $@
 
+# Part 1, Numerical Example 1.3: new vs conventional design (Fig. 1.9), then the TCA of the sun-planet pair
 run: install
+	$(BIN)/gearfe compare pipelines/cases/stress_part1_new.toml pipelines/cases/stress_part1_conventional.toml \
+		--out $(OUT)/part1_compare
 	$(BIN)/gearfe tca pipelines/cases/part1_sun_planet.toml --out $(OUT)/part1_sun_planet
+	@echo "images: $(OUT)/part1_compare/compare_zones.png, compare_pressure.png, compare_overview.png;"
+	@echo "        each design: $(OUT)/part1_compare/{new,conventional}/ (report.md, zone_*.png, overview.png, result.vtu)"
+	@echo "        TCA plots: $(OUT)/part1_sun_planet/te.png, contact_paths.png"
 
 test: install
 	$(BIN)/python -m pytest -q

@@ -21,6 +21,8 @@ SUBCOMMANDS = {
     "sweep": "pipelines.cmd_sweep",
     "mesh": "pipelines.cmd_mesh",
     "stress": "pipelines.cmd_stress",
+    "run": "pipelines.cmd_run",
+    "compare": "pipelines.cmd_compare",
 }
 
 

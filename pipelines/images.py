@@ -49,12 +49,13 @@ def _plotter(size):
 
 def render_contact_zone(grid: pv.UnstructuredGrid, field: str, focus, normal, path: Path, *, radius: float,
                         title: str = "von Mises stress [MPa]", clim=None, size=(1600, 1100),
-                        caption: str = "") -> Path:
+                        caption: str = "", show_edges: bool = True) -> Path:
     """Stress on the teeth around a contact point: camera on `focus` [mm], looking along -`normal`.
 
     Only cells within ~3 radius of the focus are drawn (the contacting teeth), coloured by the
     point field `field`, with a labelled scalar bar; `clim` fixes the colour range (to compare
-    images). Returns the PNG path.
+    images); ``show_edges`` draws the element edges (off for fine meshes, where they hide the colours).
+    Returns the PNG path.
     """
     if field not in grid.point_data:
         raise InputError("field", field, "a point field of the result: " + ", ".join(grid.point_data))
@@ -66,7 +67,7 @@ def render_contact_zone(grid: pv.UnstructuredGrid, field: str, focus, normal, pa
     sub = grid.extract_cells(near) if len(near) else grid
     p = _plotter(size)
     try:
-        p.add_mesh(sub, scalars=field, cmap="jet", clim=clim, show_edges=True, edge_color="#595959", line_width=0.3,
+        p.add_mesh(sub, scalars=field, cmap="jet", clim=clim, show_edges=show_edges, edge_color="#595959", line_width=0.3,
                    scalar_bar_args={**SCALAR_BAR, "title": title})
         if caption:
             p.add_text(caption, position="upper_left", font_size=11, color="black")

@@ -82,12 +82,16 @@ def plot_contact_paths(r: PairTCAResult, path: Path, names=("gear 1", "gear 2"))
     return savefig(fig, path)
 
 
-def side_by_side(images: list[Path], titles: list[str], path: Path, suptitle: str = "") -> Path:
-    """Images placed side by side with titles (as Fig. 1.9 (a) and (b))."""
+def side_by_side(images: list[Path], titles: list[str], path: Path, suptitle: str = "", ncols: int | None = None) -> Path:
+    """Images placed side by side with titles (as Fig. 1.9 (a) and (b)), in rows of ``ncols``."""
     import matplotlib.image as mpimg
 
-    fig, axes = plt.subplots(1, len(images), figsize=(7 * len(images), 5.2))
-    axes = np.atleast_1d(axes)
+    ncols = ncols or len(images)
+    nrows = -(-len(images) // ncols)
+    fig, axes = plt.subplots(nrows, ncols, figsize=(7 * ncols, 5.2 * nrows), squeeze=False)
+    axes = axes.ravel()
+    for ax in axes[len(images):]:
+        ax.axis("off")
     for ax, img, title in zip(axes, images, titles):
         ax.imshow(mpimg.imread(str(img)))
         ax.set_title(title)

@@ -277,6 +277,12 @@ def _regulation(case: StressCase, cache: dict, progress) -> tuple[tuple, dict]:
 
 def build_scene(case: StressCase, progress=None):
     """TCA stage: the scene to mesh and solve, and a JSON-ready record of the TCA (position, TE, regulation)."""
+    scene, rec, _ = _build(case, progress)
+    return scene, rec
+
+
+def _build(case: StressCase, progress=None):
+    """:func:`build_scene` and the TCA result (PairTCAResult, or TwinTE of the twin drive)."""
     E, nu = case.fe.E, case.fe.nu
     if case.model == "pair":
         r = run_pair_tca(case.pair, case.tca)
@@ -284,7 +290,7 @@ def build_scene(case: StressCase, progress=None):
         scene = pair_scene(case.pair, r, phi1, case.torque, case.mesh, E, nu)
         rec = {"te_peak_to_peak_arcsec": r.te_peak_to_peak_arcsec, "edge_contact": r.edge_contact,
                "elapsed_s": r.elapsed}
-        return scene, rec
+        return scene, rec, r
     cache: dict = {}
     dz, reg = _regulation(case, cache, progress)
     tw = twin_te(case.train, 0, case.errors, dz, case.tca, cache)
@@ -297,7 +303,7 @@ def build_scene(case: StressCase, progress=None):
            "edge_contact": bool(tw.members["a"].edge_contact or tw.members["b"].edge_contact),
            "phi1_grid_deg": [math.degrees(grid[0]), math.degrees(grid[-1])], "regulation": reg,
            "member_te_max_arcsec": {k: float(tw.members[k].te3.max() / ARCSEC) for k in ("a", "b")}}
-    return scene, rec
+    return scene, rec, tw
 
 
 def _json(x):
@@ -321,11 +327,12 @@ def _finite(x):
     return x
 
 
-def run_stress(case: StressCase, out: Path, progress=None) -> dict:
+def run_stress(case: StressCase, out: Path, progress=None, artefacts: dict | None = None) -> dict:
     """TCA, mesh, contact solve and results of a case; writes ``out/result.vtu`` and returns the summary.
 
     ``progress(message)`` (optional) receives one line per stage, starting with the stage name
-    ('tca', 'mesh', 'solve', 'results').
+    ('tca', 'mesh', 'solve', 'results'). ``artefacts`` (optional dict) receives the objects behind
+    the summary for further reports: ``tca`` (PairTCAResult or TwinTE), ``scene``, ``mesh``, ``result``.
     """
     out = Path(out)
     t0, c0 = time.perf_counter(), time.process_time()
@@ -335,7 +342,7 @@ def run_stress(case: StressCase, out: Path, progress=None) -> dict:
             progress(msg)
 
     say(f"tca: {case.model} model, torque {case.torque * 1e-3:g} N m")
-    scene, tca_rec = build_scene(case, say)
+    scene, tca_rec, tca_obj = _build(case, say)
     t_tca = time.perf_counter() - t0
     pos = scene.info
     say(f"tca: done in {t_tca:.1f} s (phi1 = {pos['phi1_deg']:.4f} deg)")
@@ -353,6 +360,8 @@ def run_stress(case: StressCase, out: Path, progress=None) -> dict:
     s = summarize(scene, mesh, model, r)
     out.mkdir(parents=True, exist_ok=True)
     r.write_vtu(out / "result.vtu")
+    if artefacts is not None:
+        artefacts.update(tca=tca_obj, scene=scene, mesh=mesh, result=r)
     t_res = time.perf_counter() - t1
     say(f"results: max von Mises {s['max_von_mises_mpa']:.1f} MPa, max contact pressure {s['max_contact_pressure_mpa']:.1f} MPa, "
         f"torque balance error {s['torque_balance_error']:.2e}")

@@ -133,6 +133,10 @@ def _interfaces(scene: Scene, rows: list[dict]) -> tuple[dict, dict]:
              "max_contact_pressure_mpa": max((x["max_pressure_mpa"] for x in mine), default=0.0),
              "edge_pressure_mpa": max((x["edge_pressure_mpa"] for x in mine), default=0.0),
              "tca_contact_point_mm": [float(v) for v in itf.point], "tca_kind": _kind(itf.contact.kind),
+             "tca_normal": [float(v) for v in itf.normal],
+             "slave_body": (itf.driven if itf.slave == "driven" else itf.driver).body,
+             "slave_is_driver": itf.slave != "driven",
+             "face_width_mm": float(min(itf.driver.gear.face_width, itf.driven.gear.face_width)),
              "hertz_estimate": {k: (float(v) if not isinstance(v, bool) else v) for k, v in itf.hertz.items()},
              "mesh_sizes_mm": {k: float(itf.driven.sizes[k]) for k in ("contact", "axial", "fillet", "coarse", "extent_u", "extent_z")}}
         d["members"][itf.member] = m
