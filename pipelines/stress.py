@@ -5,6 +5,10 @@ Library API (used by ``gearfe stress`` and by the ``run``/``compare``/``sweep`` 
     case = read_stress_case(load_case("pipelines/cases/stress_part1_new.toml"))
     summary = run_stress(case, Path("out/new"), progress=print)   # writes out/new/result.vtu
 
+Near a transition of a mesh (the next pair of teeth closer to contact by the TCA than the
+elastic approach) the summary's ``warnings`` say so: only the loaded pair is meshed at the contact
+sizes, so the neighbouring pairs take no load in the FE (``position.next_pair_gap_um``).
+
 Stages (times in the summary): ``tca_s`` tooth contact analysis (and, for the twin drive, the
 axial regulation of Part 1), ``mesh_s`` hexahedral models of the parts, ``solve_s`` the contact FE
 solve (:func:`fem.solve`), ``results_s`` post-processing and the VTU file.
@@ -59,7 +63,7 @@ from __future__ import annotations
 import json
 import math
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -71,7 +75,7 @@ from tca.planetary import PlanetaryTrain, ShaftErrors
 from tca.planetary_mesh import phi1_grid, run_subgear_tca
 from tca.planetary_regulation import nominal_peak, regulate_member, twin_te
 
-from .cases import ARCMIN, read_gears, read_misalignment, read_tca_options
+from .cases import ARCMIN, read_gears, read_pair, read_tca_options
 from .schema import Table
 from .stress_model import FESettings, mesh_scene, solve_scene
 from .stress_results import summarize
@@ -177,10 +181,13 @@ def _read_position(case: Table):
     if has_phi and case.has("position"):
         raise InputError("phi1_deg", case.data["phi1_deg"], "either phi1_deg or position, not both")
     phi1 = math.radians(case.get("phi1_deg", float, lo=-3600.0, hi=3600.0)) if has_phi else None
-    if case.has("position") and isinstance(case.data["position"], int) and not isinstance(case.data["position"], bool):
+    v = case.data.get("position", "max_te")
+    if isinstance(v, int) and not isinstance(v, bool):
         pos = case.get("position", int)
-    else:
+    elif isinstance(v, str):
         pos = case.get("position", str, "max_te", choices=("max_te", "min_te"))
+    else:
+        raise InputError("position", v, "'max_te', 'min_te' or an integer index of the TCA positions")
     return pos, phi1
 
 
@@ -199,15 +206,7 @@ def read_stress_case(case: Table) -> StressCase:
         for k in ("planets", "member_gap_mm", "shaft", "regulation"):
             if case.has(k):
                 raise InputError(k, case.data[k], "no planetary-train keys in a 'pair' case")
-        gears = read_gears(case)
-        names = tuple(gears)
-        driver = case.get("driver", str, choices=names)
-        driven = case.get("driven", str, choices=names)
-        if driver == driven:
-            raise InputError("driven", driven, f"a gear other than the driver {driver!r}")
-        cd = case.get("center_distance_mm", float, None, lo=0.0, lo_open=True)
-        pair = GearPair(gears[driver], gears[driven], read_misalignment(case.table("misalignment", required=False)),
-                        center_distance=cd)
+        pair, _, _ = read_pair(case, read_gears(case))
         out = StressCase("pair", torque, title, pair=pair, position=pos, phi1=phi1, tca=tca, mesh=mesh, fe=fe)
     else:
         for k in ("driver", "driven", "center_distance_mm", "misalignment"):
@@ -252,7 +251,8 @@ def _pick(te: np.ndarray, position) -> int:
     if position == "min_te":
         return int(np.argmin(te[:-1] if n > 1 else te))
     if not -n <= position < n:
-        raise InputError("position", position, f"an integer index in [0, {n - 1}], 'max_te' or 'min_te'")
+        raise InputError("position", position, f"an integer index in [{-n}, {n - 1}] (negative: from the end), "
+                         "'max_te' or 'min_te'")
     return int(position) % n
 
 
@@ -327,6 +327,22 @@ def _finite(x):
     return x
 
 
+def _warnings(scene, approach: float, interfaces: dict) -> list[str]:
+    """Loaded meshes whose next pair of teeth is closer to contact (TCA) than the elastic approach [mm].
+
+    Only the loaded pair's flanks are meshed at the contact sizes; the neighbouring teeth are
+    coarse, so a second pair that would share the load (near a transition) gets none in the FE.
+    """
+    out = []
+    for itf in scene.interfaces:
+        g = itf.contact.next_gap
+        if g < approach and interfaces[itf.name]["members"][itf.member]["force_n"] > 0:
+            out.append(f"{itf.name} {itf.member}: the next pair of teeth is {g * 1e3:.3g} um from contact by the TCA "
+                       f"(< elastic approach {approach * 1e3:g} um) and may share the load, but only the loaded pair is "
+                       "meshed finely: the FE load share of the neighbouring pairs is not modelled")
+    return out
+
+
 def run_stress(case: StressCase, out: Path, progress=None, artefacts: dict | None = None) -> dict:
     """TCA, mesh, contact solve and results of a case; writes ``out/result.vtu`` and returns the summary.
 
@@ -365,9 +381,13 @@ def run_stress(case: StressCase, out: Path, progress=None, artefacts: dict | Non
     t_res = time.perf_counter() - t1
     say(f"results: max von Mises {s['max_von_mises_mpa']:.1f} MPa, max contact pressure {s['max_contact_pressure_mpa']:.1f} MPa, "
         f"torque balance error {s['torque_balance_error']:.2e}")
+    warnings = _warnings(scene, case.tca.elastic_approach, s["interfaces"])
+    for w in warnings:
+        say("warning: " + w)
     summary = {
         "model": case.model, "title": case.title, "torque_nm": case.torque * 1e-3,
         **s,
+        "warnings": warnings,
         "position": pos, "tca": tca_rec,
         "tca_s": t_tca, "mesh_s": t_mesh, "solve_s": t_solve, "results_s": t_res,
         "total_s": time.perf_counter() - t0, "cpu_s": time.process_time() - c0,
@@ -377,5 +397,3 @@ def run_stress(case: StressCase, out: Path, progress=None, artefacts: dict | Non
     }
     return _finite(json.loads(json.dumps(summary, default=_json)))
 
-
-_ = replace

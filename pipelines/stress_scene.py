@@ -95,6 +95,7 @@ class MeshContact:
     exact: bool  # on the TCA grid
     slope: float = 0.0  # dΔφ2/dφ1 of the pair in contact [rad/rad]
     arms: tuple = (0.0, 0.0)  # moment arms ((x - o_i) x n) . a_i of the normal about both axes [mm]
+    next_gap: float = math.inf  # [mm] TCA separation of the next pair of teeth, (Δφ2 - Δφ2 of the next branch) |arm 2|
 
     @property
     def ratio(self) -> float:
@@ -113,13 +114,15 @@ def mesh_contact(result: PairTCAResult, phi: float) -> MeshContact:
         raise GeometryError(f"{pair.gear1.name}-{pair.gear2.name}", "no contact",
                             f"no pair of teeth is in contact at phi = {math.degrees(phi):.6f} deg")
     k = int(ks[q])
+    others = np.delete(val[0], q)
+    te_next = float(others[np.isfinite(others)].max(initial=-math.inf))
     ref = result.reference
     n = len(ref.phi1)
     h = (ref.phi1[-1] - ref.phi1[0]) / (n - 1)
     p1, p2 = 2 * math.pi / pair.gear1.teeth, 2 * math.pi / pair.gear2.teeth
     t = (phi - k * p1 - ref.phi1[0]) / h
     tr = round(t)
-    exact = abs(t - tr) < 1e-7
+    exact = bool(abs(t - tr) < 1e-7)
     ok = (ref.kind != ContactKind.NONE) & np.all(np.isfinite(ref.x), axis=1)
     if exact:
         i0, w = int(tr), 0.0
@@ -144,7 +147,8 @@ def mesh_contact(result: PairTCAResult, phi: float) -> MeshContact:
     x0, n0 = w1.r[0].copy(), w1.n[0].copy()
     arms = tuple(float(np.cross(x0 - m.origin, n0) @ m.axis) for m in (m1, m2))
     return MeshContact(k, float(phi), float(phi2), te, tuple(float(v) for v in x[:4]), kind, x0, n0,
-                       (float(lam[0, 0]), float(lam[0, 1])), float(ang[0]), exact, _slope(mte, k, phi), arms)
+                       (float(lam[0, 0]), float(lam[0, 1])), float(ang[0]), exact, _slope(mte, k, phi), arms,
+                       (te - te_next) * abs(arms[1]))
 
 
 def _slope(mte: MeshTE, k: int, phi: float) -> float:
@@ -370,6 +374,7 @@ def pair_scene(pair: GearPair, result: PairTCAResult, phi1: float, torque: float
     ratio = g1.teeth / g2.teeth
     info = {"phi1_deg": math.degrees(phi1), "phi2_deg": math.degrees(c.phi2), "te_arcsec": c.te / _ARCSEC,
             "active_pair": c.k, "kind": _kind_name(c.kind), "on_tca_grid": c.exact,
+            "instantaneous_ratio": c.ratio, "te_slope": c.slope, "next_pair_gap_um": c.next_gap * 1e3,
             "loaded_teeth": {g1.name: itf.driver.centre, g2.name: itf.driven.centre}}
     return Scene("pair", (itf.driver, itf.driven), (itf,), g1.name,
                  {g2.name: (ReferencePoint(tuple(m2.origin), tuple(m2.axis)), -abs(torque))},
@@ -443,9 +448,11 @@ def twin_scene(train: PlanetaryTrain, subs: dict, errors: ShaftErrors, dz: tuple
                       "ring_backlash_um": (phi3_lead - c23.phi2) * r3 * 1e3,
                       "dz_mm": dz[0 if k == "a" else 1], "phi2_deg": math.degrees(c12.phi2),
                       "sun_mesh": {"kind": _kind_name(own12.kind), "active_pair": own12.k, "on_tca_grid": own12.exact,
-                                   "instantaneous_ratio": own12.ratio},
+                                   "instantaneous_ratio": own12.ratio, "te_slope": own12.slope,
+                                   "next_pair_gap_um": own12.next_gap * 1e3},
                       "ring_mesh": {"kind": _kind_name(c23.kind), "active_pair": c23.k, "on_tca_grid": c23.exact,
-                                    "instantaneous_ratio": c23.ratio},
+                                    "instantaneous_ratio": c23.ratio, "te_slope": c23.slope,
+                                    "next_pair_gap_um": c23.next_gap * 1e3},
                       "loaded_teeth": {"sun": s_itf.driver.centre, "planet_sun_side": s_itf.driven.centre,
                                        "planet_ring_side": r_itf.driver.centre, "ring": r_itf.driven.centre}}
     # the twin planet: reference node on the shaft axis, midway between the members' nominal planes
