@@ -150,6 +150,7 @@ def _read_mesh(t: Table | None) -> SizeRules:
         contact=t.get("contact_size_mm", float, None, **pos),
         axial=t.get("axial_contact_size_mm", float, None, **pos),
         fillet=t.get("fillet_size_mm", float, None, **pos),
+        neighbour=t.get("neighbour_size_mm", float, None, **pos),
         growth=t.get("growth", float, 1.3, lo=1.05, hi=3.0),
         zone=t.get("zone", float, 1.2, lo=0.0, hi=5.0),
     )

@@ -203,12 +203,16 @@ def hertz_contact(lam: tuple, load: float, E: float, nu: float, length: float) -
     return {"a_mm": 0.5 * length, "b_mm": b, "p0_mpa": 2 * P1 / (math.pi * b), "line": True, "load_n": load}
 
 
+NEIGHBOUR = 0.05  # default profile size on the other teeth's loaded flanks [module] (converged load share, see README)
+
+
 @dataclass(frozen=True)
 class SizeRules:
     """Element sizes of the models [mm, or multiples of the module m]; every size is divided by ``refine``.
 
     None: the Hertz-based contact sizes of the module docstring, ``coarse`` = 0.75 m,
-    ``fillet`` = 0.1 m, rim depth 3 m.
+    ``fillet`` = 0.1 m, ``neighbour`` = NEIGHBOUR m (profile size on the loaded side of the
+    other teeth, :func:`mesher.body.plan_tooth`), rim depth 3 m.
     """
 
     refine: float = 1.0
@@ -218,6 +222,7 @@ class SizeRules:
     contact: float | None = None
     axial: float | None = None
     fillet: float | None = None
+    neighbour: float | None = None
     growth: float = 1.3
     zone: float = 1.2
 
@@ -226,7 +231,7 @@ class SizeRules:
             raise InputError("mesh.refine", self.refine, "in [0.1, 10] (element sizes are divided by it)")
         if not (isinstance(self.teeth, int) and not isinstance(self.teeth, bool) and 1 <= self.teeth <= 9):
             raise InputError("mesh.teeth", self.teeth, "an integer in [1, 9] (teeth per gear part)")
-        for k in ("rim_depth", "coarse", "contact", "axial", "fillet"):
+        for k in ("rim_depth", "coarse", "contact", "axial", "fillet", "neighbour"):
             v = getattr(self, k)
             if v is not None and not (v > 0 and math.isfinite(v)):
                 raise InputError(f"mesh.{'rim_depth' if k == 'rim_depth' else k + '_size'}_mm", v, "> 0 mm")
@@ -253,9 +258,10 @@ def contact_sizes(rules: SizeRules, gear: Gear, hz: dict, angle: float, kind: in
     contact = min(max(contact, 0.005 * m), coarse * r) / r
     axial = min(max(axial, contact * r), coarse * r) / r
     fillet = min((rules.fillet if rules.fillet is not None else 0.1 * m) / r, coarse)
+    neighbour = min((rules.neighbour if rules.neighbour is not None else NEIGHBOUR * m) / r, coarse)
     ext_u = rules.zone * (a * s + b * c) if surface else rules.zone * b
     ext_z = rules.zone * (a * c + b * s) if surface else 0.0
-    return {"coarse": coarse, "contact": contact, "axial": axial, "fillet": fillet,
+    return {"coarse": coarse, "contact": contact, "axial": axial, "fillet": fillet, "neighbour": neighbour,
             "rim": rules.rim_depth if rules.rim_depth is not None else 3.0 * m, "growth": rules.growth,
             "extent_u": ext_u, "extent_z": ext_z}
 
