@@ -329,18 +329,20 @@ def _finite(x):
 
 
 def _warnings(scene, approach: float, interfaces: dict) -> list[str]:
-    """Loaded meshes whose next pair of teeth is closer to contact (TCA) than the elastic approach [mm].
-
-    Only the loaded pair's flanks are meshed at the contact sizes; the neighbouring teeth are
-    coarse, so a second pair that would share the load (near a transition) gets none in the FE.
+    """Loaded meshes whose next pair of teeth is closer to contact (TCA) than the elastic approach [mm]
+    but carries nothing in the FE: its flanks are then too coarse to close (``[mesh] neighbour_size_mm``).
     """
     out = []
     for itf in scene.interfaces:
         g = itf.contact.next_gap
-        if g < approach and interfaces[itf.name]["members"][itf.member]["force_n"] > 0:
+        d = interfaces[itf.name]
+        if not (g < approach and d["members"][itf.member]["force_n"] > 0):
+            continue
+        others = [t["force_n"] for k, t in d["teeth"].items() if k.startswith(f"{itf.member}/") and t["offset"] != 0]
+        if not any(f > 0 for f in others):
             out.append(f"{itf.name} {itf.member}: the next pair of teeth is {g * 1e3:.3g} um from contact by the TCA "
-                       f"(< elastic approach {approach * 1e3:g} um) and may share the load, but only the loaded pair is "
-                       "meshed finely: the FE load share of the neighbouring pairs is not modelled")
+                       f"(< elastic approach {approach * 1e3:g} um) but carries no load in the FE: its flanks may be "
+                       "meshed too coarsely to close (decrease [mesh] neighbour_size_mm)")
     return out
 
 

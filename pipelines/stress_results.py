@@ -19,7 +19,9 @@ m_i = ((x - o_i) x n) . a_i, which equals the instantaneous ratio of its mesh,
 rho = m1/m2 = N1/N2 + dΔφ2/dφ1 (the TCA slope ``te_slope`` in the summary's position; they agree to
 < 1e-5 on surface contact, tests/pipelines/test_stress.py; at an edge or corner contact the TE has
 a kink and the grid slope means nothing). So the nominal ratio holds only where the loaded
-contacts' TE slopes vanish. For a pair T_driver / T = rho. For the twin drive, with sigma_k and
+contacts' TE slopes vanish. When several pairs of teeth of one mesh carry load (near a
+transition), the mesh's ratio is their ratios rho_q = rho + slope_q - slope (slope_q of the TE branch
+of the pair q teeth on) weighted by their FE forces. For a pair T_driver / T = rho. For the twin drive, with sigma_k and
 tau_k the shares of the planet's torque received from the sun contacts and passed to the ring
 contacts of member k (FE forces times the planet's arms at the TCA points), the rigid planet's
 equilibrium gives the *kinematic ratio*
@@ -162,10 +164,20 @@ def _interfaces(scene: Scene, rows: list[dict]) -> tuple[dict, dict]:
     return res, share
 
 
+def _mesh_ratio(itf, interfaces: dict) -> float:
+    """Instantaneous ratio of one member's mesh: its loaded tooth pairs' ratios weighted by their FE forces."""
+    teeth = interfaces[itf.name]["teeth"]
+    rows = [t for k, t in teeth.items() if k.startswith(f"{itf.member}/") and t["force_n"] > 0]
+    tot = sum(t["force_n"] for t in rows)
+    if tot <= 0:
+        return abs(itf.contact.ratio)
+    return abs(sum(t["force_n"] * itf.contact.ratio_of(t["offset"]) for t in rows) / tot)
+
+
 def kinematic_ratio(scene: Scene, interfaces: dict) -> float:
     """Reaction / applied torque predicted by the TCA's instantaneous ratios and the FE load distribution."""
     if scene.model == "pair":
-        return abs(scene.interfaces[0].contact.ratio)
+        return _mesh_ratio(scene.interfaces[0], interfaces)
 
     def weights(name, arm):
         itfs = [i for i in scene.interfaces if i.name == name]
@@ -174,7 +186,8 @@ def kinematic_ratio(scene: Scene, interfaces: dict) -> float:
 
     sun, s = weights("sun-planet", 1)
     ring, t = weights("planet-ring", 0)
-    return float(sum(w * abs(i.contact.ratio) for i, w in zip(sun, s)) / sum(w / abs(i.contact.ratio) for i, w in zip(ring, t)))
+    return float(sum(w * _mesh_ratio(i, interfaces) for i, w in zip(sun, s))
+                 / sum(w / _mesh_ratio(i, interfaces) for i, w in zip(ring, t)))
 
 
 def _kind(k) -> str:

@@ -96,11 +96,16 @@ class MeshContact:
     slope: float = 0.0  # dΔφ2/dφ1 of the pair in contact [rad/rad]
     arms: tuple = (0.0, 0.0)  # moment arms ((x - o_i) x n) . a_i of the normal about both axes [mm]
     next_gap: float = math.inf  # [mm] TCA separation of the next pair of teeth, (Δφ2 - Δφ2 of the next branch) |arm 2|
+    slopes: dict = field(default_factory=dict)  # offset q -> dΔφ2/dφ1 of the pair q teeth on (branch k - q)
 
     @property
     def ratio(self) -> float:
         """Instantaneous ratio dφ2/dφ1 = N1/N2 + dΔφ2/dφ1 of the pair in contact."""
         return self.arms[0] / self.arms[1] if self.arms[1] else float("nan")
+
+    def ratio_of(self, q: int) -> float:
+        """Instantaneous ratio of the pair of teeth at offset q from the pair in contact (nan: not on its branch)."""
+        return self.ratio + self.slopes.get(q, float("nan")) - self.slope if q else self.ratio
 
 
 def mesh_contact(result: PairTCAResult, phi: float) -> MeshContact:
@@ -148,14 +153,16 @@ def mesh_contact(result: PairTCAResult, phi: float) -> MeshContact:
     arms = tuple(float(np.cross(x0 - m.origin, n0) @ m.axis) for m in (m1, m2))
     return MeshContact(k, float(phi), float(phi2), te, tuple(float(v) for v in x[:4]), kind, x0, n0,
                        (float(lam[0, 0]), float(lam[0, 1])), float(ang[0]), exact, _slope(mte, k, phi), arms,
-                       (te - te_next) * abs(arms[1]))
+                       (te - te_next) * abs(arms[1]), {q: _slope(mte, k - q, phi) for q in range(-4, 5)})
 
 
 def _slope(mte: MeshTE, k: int, phi: float) -> float:
     """dΔφ2/dφ1 [rad/rad] of branch k at phi: parabola through the three nearest grid values."""
     y = mte.branch
     t = (phi - k * mte.pitch - mte.phi0) / mte.h
-    i = min(max(int(round(t)), 0), len(y) - 1)
+    if not -0.5 <= t <= len(y) - 0.5:
+        return float("nan")  # the branch is not defined at phi
+    i = int(round(t))
     ok = lambda j: 0 <= j < len(y) and np.isfinite(y[j])  # noqa: E731
     if ok(i - 1) and ok(i) and ok(i + 1):
         d = 0.5 * (y[i + 1] - y[i - 1]) + (t - i) * (y[i + 1] - 2 * y[i] + y[i - 1])
@@ -164,7 +171,7 @@ def _slope(mte: MeshTE, k: int, phi: float) -> float:
     elif ok(i - 1) and ok(i):
         d = y[i] - y[i - 1]
     else:
-        return 0.0
+        return float("nan")
     return float(d / mte.h)
 
 
