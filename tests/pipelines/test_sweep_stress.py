@@ -103,12 +103,23 @@ def test_load_share_and_loaded_te(swept):
 def test_loaded_te_scales_with_torque(swept):
     _, _, rows = swept
     by = {(r["positions.step"], float(r["torque_nm"])): float(r["elastic_rotation_arcsec"]) for r in rows}
+    second = {(r["positions.step"], float(r["torque_nm"])):
+              sorted(float(v) for k, v in r.items() if k.startswith("share.sun-planet.teeth.") and v != "")[-2] for r in rows}
+    single = 0
     for step in ("0", "1", "2", "3"):
         q = by[(step, 100.0)] / by[(step, 50.0)]
-        # doubling the torque: between a pure Hertz point contact (approach ~ P^(2/3): 2^(2/3) = 1.587) and a
-        # linear structure (2); 3 % either way for the contact zone resolved by few nodes (they activate in
-        # steps) and the Hertz-based element sizes that change with the load. Measured: 1.62-1.65.
-        assert 2 ** (2 / 3) * 0.97 < q < 2.0 * 1.03, (step, q)
+        if max(second[(step, 50.0)], second[(step, 100.0)]) < 0.01:  # one pair carries the load at both torques
+            single += 1
+            # doubling the torque: between a pure Hertz point contact (approach ~ P^(2/3): 2^(2/3) = 1.587) and a
+            # linear structure (2); 3 % either way for the contact zone resolved by few nodes (they activate in
+            # steps) and the Hertz-based element sizes that change with the load. Measured: 1.62-1.65.
+            assert 2 ** (2 / 3) * 0.97 < q < 2.0 * 1.03, (step, q)
+        else:
+            # a second pair closes (near a transition) and takes a growing share as the load grows: the mesh
+            # stiffens, so the lag grows less than for one Hertz contact. Measured at step 0: q = 1.51.
+            assert q < 2 ** (2 / 3) * 1.03, (step, q)
+            assert second[(step, 100.0)] > second[(step, 50.0)] - 0.02, step
+    assert single >= 2  # the middle of the cycle: one pair only
 
 
 def test_finished_cases_are_not_recomputed(swept):
