@@ -64,7 +64,8 @@ from .assembly import face_node_areas
 from .constraints import known_names
 from .model import ContactOptions, ContactPair
 
-__all__ = ["ContactSet", "contact_set", "ActiveSetSolution", "active_set", "penalty_active_set"]
+__all__ = ["ContactSet", "contact_set", "ActiveSetSolution", "active_set", "penalty_active_set", "bilinear",
+           "project_to_faces"]
 
 _OPPOSITE = np.array([1, 0, 4, 5, 2, 3])
 
@@ -106,19 +107,23 @@ def _faces(mesh: HexMesh, name: str, field: str) -> np.ndarray:
     return fs
 
 
-def _bilinear(xi, eta):
+def bilinear(xi, eta):
+    """Shape functions of a 4-node face and their derivatives at (xi, eta): N, dN/dxi, dN/deta (..., 4)."""
     N = 0.25 * np.stack([(1 - xi) * (1 - eta), (1 + xi) * (1 - eta), (1 + xi) * (1 + eta), (1 - xi) * (1 + eta)], -1)
     dxi = 0.25 * np.stack([-(1 - eta), (1 - eta), (1 + eta), -(1 + eta)], -1)
     deta = 0.25 * np.stack([-(1 - xi), -(1 + xi), (1 + xi), (1 - xi)], -1)
     return N, dxi, deta
 
 
-def _project(xs: np.ndarray, X: np.ndarray, iters: int = 12):
-    """Closest-point projection of points xs (p, 3) on bilinear faces X (p, 4, 3): xi, eta, x_p."""
+def project_to_faces(xs: np.ndarray, X: np.ndarray, iters: int = 12, limit: float = 2.0):
+    """Closest-point projection of points xs (p, 3) on bilinear faces X (p, 4, 3): xi, eta, x_p.
+
+    The face coordinates are kept in [-limit, limit] (1: on the face itself; 2: its extension,
+    which lets the contact search slide across face boundaries)."""
     xi = np.zeros(len(xs))
     eta = np.zeros(len(xs))
     for _ in range(iters):
-        N, dxi, deta = _bilinear(xi, eta)
+        N, dxi, deta = bilinear(xi, eta)
         x = np.einsum("pa,pai->pi", N, X)
         t1 = np.einsum("pa,pai->pi", dxi, X)
         t2 = np.einsum("pa,pai->pi", deta, X)
@@ -126,9 +131,9 @@ def _project(xs: np.ndarray, X: np.ndarray, iters: int = 12):
         a11, a12, a22 = (t1 * t1).sum(1), (t1 * t2).sum(1), (t2 * t2).sum(1)
         b1, b2 = -(t1 * r).sum(1), -(t2 * r).sum(1)
         det = a11 * a22 - a12**2
-        xi = np.clip(xi + (a22 * b1 - a12 * b2) / det, -2.0, 2.0)
-        eta = np.clip(eta + (a11 * b2 - a12 * b1) / det, -2.0, 2.0)
-    N, dxi, deta = _bilinear(xi, eta)
+        xi = np.clip(xi + (a22 * b1 - a12 * b2) / det, -limit, limit)
+        eta = np.clip(eta + (a11 * b2 - a12 * b1) / det, -limit, limit)
+    N, dxi, deta = bilinear(xi, eta)
     return xi, eta, np.einsum("pa,pai->pi", N, X)
 
 
@@ -154,7 +159,7 @@ def _slave_points(mesh: HexMesh, fs: np.ndarray, order: int):
     g, wg = np.polynomial.legendre.leggauss(order)
     xi, eta = (a.ravel() for a in np.meshgrid(g, g, indexing="ij"))
     wq = np.outer(wg, wg).ravel()
-    N, dxi, deta = _bilinear(xi, eta)  # (q, 4)
+    N, dxi, deta = bilinear(xi, eta)  # (q, 4)
     pts = np.einsum("qa,fai->fqi", N, X)
     n = np.cross(np.einsum("qa,fai->fqi", dxi, X), np.einsum("qa,fai->fqi", deta, X))
     dA = np.linalg.norm(n, axis=-1)
@@ -209,14 +214,14 @@ def contact_set(mesh: HexMesh, pairs: tuple[ContactPair, ...], E_cell: np.ndarra
         _, cand = cKDTree(Xm.mean(1)).query(xs0, k=kq)
         cand = cand.reshape(npt, kq)
         xs = np.repeat(xs0, kq, axis=0)
-        xi, eta, xp = _project(xs, Xm[cand.ravel()])
+        xi, eta, xp = project_to_faces(xs, Xm[cand.ravel()])
         inside = (np.abs(xi) <= 1.0 + 1e-6) & (np.abs(eta) <= 1.0 + 1e-6)
         d = np.where(inside, np.linalg.norm(xs - xp, axis=1), np.inf).reshape(npt, kq)
         best = np.argmin(d, axis=1)
         sel = np.arange(npt) * kq + best
         ok = np.isfinite(d[np.arange(npt), best])
         face = cand.ravel()[sel]
-        N, dxi, deta = _bilinear(xi[sel], eta[sel])
+        N, dxi, deta = bilinear(xi[sel], eta[sel])
         nm = np.cross(np.einsum("pa,pai->pi", dxi, Xm[face]), np.einsum("pa,pai->pi", deta, Xm[face]))
         nm /= np.linalg.norm(nm, axis=1, keepdims=True)
         ok &= np.einsum("ij,ij->i", nm, ns) < -0.5  # the surfaces face each other

@@ -41,6 +41,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
+from fem.contact import bilinear, project_to_faces
 from fem.result import STRESS_RECOVERY, FEResult
 from fem.model import FEModel
 from mesher.hexmesh import HexMesh
@@ -61,13 +62,6 @@ def boundary_nodes(mesh: HexMesh, face_set: str) -> np.ndarray:
     return np.unique(uniq[counts == 1])
 
 
-def _bilinear(xi, eta):
-    N = 0.25 * np.stack([(1 - xi) * (1 - eta), (1 + xi) * (1 - eta), (1 + xi) * (1 + eta), (1 - xi) * (1 + eta)], -1)
-    dxi = 0.25 * np.stack([-(1 - eta), (1 - eta), (1 + eta), -(1 + eta)], -1)
-    deta = 0.25 * np.stack([-(1 - xi), -(1 + xi), (1 + xi), (1 - xi)], -1)
-    return N, dxi, deta
-
-
 def pressure_at(points: np.ndarray, mesh: HexMesh, face_set: str, pressure: np.ndarray, tol: float) -> np.ndarray:
     """Nodal field of a face set interpolated at points (closest point on its faces, within tol [mm]; else 0)."""
     if len(points) == 0:
@@ -78,20 +72,9 @@ def pressure_at(points: np.ndarray, mesh: HexMesh, face_set: str, pressure: np.n
     _, cand = cKDTree(X.mean(1)).query(points, k=kq)
     cand = np.asarray(cand).reshape(len(points), kq)
     xs = np.repeat(points, kq, axis=0)
-    Xc = X[cand.ravel()]
-    xi = np.zeros(len(xs))
-    eta = np.zeros(len(xs))
-    for _ in range(12):
-        N, dxi, deta = _bilinear(xi, eta)
-        r = np.einsum("pa,pai->pi", N, Xc) - xs
-        t1, t2 = np.einsum("pa,pai->pi", dxi, Xc), np.einsum("pa,pai->pi", deta, Xc)
-        a11, a12, a22 = (t1 * t1).sum(1), (t1 * t2).sum(1), (t2 * t2).sum(1)
-        b1, b2 = -(t1 * r).sum(1), -(t2 * r).sum(1)
-        det = a11 * a22 - a12**2
-        xi = np.clip(xi + (a22 * b1 - a12 * b2) / det, -1.0, 1.0)
-        eta = np.clip(eta + (a11 * b2 - a12 * b1) / det, -1.0, 1.0)
-    N, _, _ = _bilinear(xi, eta)
-    d = np.linalg.norm(np.einsum("pa,pai->pi", N, Xc) - xs, axis=1).reshape(len(points), kq)
+    xi, eta, xp = project_to_faces(xs, X[cand.ravel()], limit=1.0)
+    N, _, _ = bilinear(xi, eta)
+    d = np.linalg.norm(xp - xs, axis=1).reshape(len(points), kq)
     best = np.argmin(d, axis=1)
     sel = np.arange(len(points)) * kq + best
     vals = np.einsum("pa,pa->p", N[sel], np.nan_to_num(pressure)[q[cand.ravel()[sel]]])
