@@ -315,7 +315,8 @@ def write_report(data: dict, out: Path) -> str:
     if s:
         b, lin = s["best"], s["linear"]
         t = b["timings"]
-        L += [f"Same model at refine {s['refine']:.3f} ({"the middle quick level" if data["quick"] else f"interpolated for ~{TARGET_DOF // 1000}k DOF"}{'; --quick: a coarse mesh, not the target size' if data['quick'] else ''}): "
+        why = "--quick: the middle level, a coarse mesh, not the target size" if data["quick"] else f"interpolated for ~{TARGET_DOF // 1000}k DOF"
+        L += [f"Same model at refine {s['refine']:.3f} ({why}): "
               f"{s['dofs']} DOF (reduced {s['reduced_dofs']}), {s['candidates']} contact candidates, {s['active']} active, "
               f"{s['iterations']} active-set iterations, Schur rows {s['schur_rows']}, solver {s['solver']}. "
               f"TCA + meshing {s['tca_mesh_s']:.1f} s.", "",
