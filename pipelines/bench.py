@@ -2,7 +2,7 @@
 
 Each ``pipelines.bench_<area>`` module writes its markdown report (and plots) into
 ``<out>/<area>/``; this runner writes ``<out>/REPORT.md`` linking them. TCA runs on one core (the target is per core); the FE
-benchmark uses both cores.
+benchmarks (``fem``, ``stress``: the speed-vs-error report of the sun–planet contact model) use both cores.
 """
 
 from __future__ import annotations
@@ -22,6 +22,11 @@ ONE_CORE = {"OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "OPENBLAS_NUM_THREAD
 AREAS = {
     "tca": ("pipelines.bench_tca", ONE_CORE),
     "fem": ("pipelines.bench_fem", {}),
+    "mesher": ("pipelines.bench_mesher", {}),
+    "part1": ("pipelines.bench_part1", {}),
+    "part2": ("pipelines.bench_part2", {}),
+    "part3": ("pipelines.bench_part3", {}),
+    "stress": ("pipelines.bench_stress", {}),
 }
 
 
@@ -35,6 +40,7 @@ def main(argv=None) -> int:
     report = ["# gearfe benchmarks", "", f"Started {time.strftime('%Y-%m-%d %H:%M:%S')}, "
               f"load {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores.", ""]
     status = 0
+    t_all = time.perf_counter()
     for area, (mod, env) in AREAS.items():
         if args.only and area not in args.only:
             continue
@@ -48,6 +54,7 @@ def main(argv=None) -> int:
         report.append(f"- {link}: {'ok' if p.returncode == 0 else f'FAILED ({p.returncode})'}, "
                       f"{time.perf_counter() - t0:.0f} s")
         status |= p.returncode != 0
+    report += ["", f"Total {time.perf_counter() - t_all:.0f} s, load at the end {os.getloadavg()[0]:.2f}."]
     (out / "REPORT.md").write_text("\n".join(report) + "\n")
     print(f"wrote {out / 'REPORT.md'}")
     return int(status)

@@ -143,7 +143,7 @@ def _read_mesh(t: Table | None) -> SizeRules:
         return SizeRules()
     pos = dict(lo=0.0, lo_open=True)
     r = SizeRules(
-        refine=t.get("refine", float, 1.0, lo=0.1, hi=10.0),
+        refine=t.get("refine", float, 1.0, lo=0.1, hi=10.0),  # default chosen by pipelines.bench_stress
         teeth=t.get("teeth", int, 3, lo=1, hi=9),
         rim_depth=t.get("rim_depth_mm", float, None, **pos),
         coarse=t.get("coarse_size_mm", float, None, **pos),
