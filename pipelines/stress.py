@@ -5,9 +5,10 @@ Library API (used by ``gearfe stress`` and by the ``run``/``compare``/``sweep`` 
     case = read_stress_case(load_case("pipelines/cases/stress_part1_new.toml"))
     summary = run_stress(case, Path("out/new"), progress=print)   # writes out/new/result.vtu
 
-Near a transition of a mesh (the next pair of teeth closer to contact by the TCA than the
-elastic approach) the summary's ``warnings`` say so: only the loaded pair is meshed at the contact
-sizes, so the neighbouring pairs take no load in the FE (``position.next_pair_gap_um``).
+Near a transition of a mesh the next pair of teeth (``position.next_pair_gap_um`` from the TCA)
+closes under load and shares it: the other teeth's loaded flanks are meshed at
+``neighbour_size_mm`` for that. The summary's ``warnings`` flag a next pair closer than the elastic
+approach that still carries nothing in the FE (its flanks too coarse to close).
 
 Stages (times in the summary): ``tca_s`` tooth contact analysis (and, for the twin drive, the
 axial regulation of Part 1), ``mesh_s`` hexahedral models of the parts, ``solve_s`` the contact FE
@@ -43,7 +44,7 @@ Case file (TOML, ``kind = "stress"``)::
     [mesh]
     refine = 1.0                  # all element sizes are divided by this factor
     teeth = 3                     # teeth per gear part
-    # coarse_size_mm, contact_size_mm, axial_contact_size_mm, fillet_size_mm, rim_depth_mm,
+    # coarse_size_mm, contact_size_mm, axial_contact_size_mm, fillet_size_mm, neighbour_size_mm, rim_depth_mm,
     # growth, zone: override the defaults of pipelines.stress_scene (Hertz-based contact sizes)
     [fe]
     element = "C3D8I"             # or "C3D8"

@@ -210,7 +210,7 @@ def hertz_contact(lam: tuple, load: float, E: float, nu: float, length: float) -
     return {"a_mm": 0.5 * length, "b_mm": b, "p0_mpa": 2 * P1 / (math.pi * b), "line": True, "load_n": load}
 
 
-NEIGHBOUR = 0.05  # default profile size on the other teeth's loaded flanks [module] (converged load share, see README)
+NEIGHBOUR = 0.1  # default profile size on the other teeth's loaded flanks [module] (converged load share, see README)
 
 
 @dataclass(frozen=True)
@@ -219,7 +219,8 @@ class SizeRules:
 
     None: the Hertz-based contact sizes of the module docstring, ``coarse`` = 0.75 m,
     ``fillet`` = 0.1 m, ``neighbour`` = NEIGHBOUR m (profile size on the loaded side of the
-    other teeth, :func:`mesher.body.plan_tooth`), rim depth 3 m. Default ``refine`` = 1: the cheapest
+    other teeth, :func:`mesher.body.plan_tooth`; divided by ``refine`` only when ``refine`` > 1),
+    rim depth 3 m. Default ``refine`` = 1: the cheapest
     level of ``pipelines.bench_stress`` with the maximum von Mises stress within 5 % (README,
     "Stress speed vs error").
     """
@@ -267,7 +268,9 @@ def contact_sizes(rules: SizeRules, gear: Gear, hz: dict, angle: float, kind: in
     contact = min(max(contact, 0.005 * m), coarse * r) / r
     axial = min(max(axial, contact * r), coarse * r) / r
     fillet = min((rules.fillet if rules.fillet is not None else 0.1 * m) / r, coarse)
-    neighbour = min((rules.neighbour if rules.neighbour is not None else NEIGHBOUR * m) / r, coarse)
+    # a resolution of the flank geometry (facet sag against the elastic approach), not of a stress gradient:
+    # coarser models (refine < 1) keep it, finer ones refine it too
+    neighbour = min((rules.neighbour if rules.neighbour is not None else NEIGHBOUR * m) / max(r, 1.0), coarse)
     ext_u = rules.zone * (a * s + b * c) if surface else rules.zone * b
     ext_z = rules.zone * (a * c + b * s) if surface else 0.0
     return {"coarse": coarse, "contact": contact, "axial": axial, "fillet": fillet, "neighbour": neighbour,

@@ -3,7 +3,7 @@
 Near a transition the next pair's unloaded gap (TCA) is smaller than the elastic approach, so it
 takes part of the load. A coarse faceted flank lies inside the curved one by h^2/(8 rho) — about
 0.1 mm at 3 mm elements, more than the approach — and would never touch: the other teeth's loaded
-flanks are meshed at ``SizeRules.neighbour`` (default 0.05 m / refine).
+flanks are meshed at ``SizeRules.neighbour`` (default 0.1 m = 0.2 mm here; divided by refine when refine > 1).
 
 Measured on stress_pair_small (refine 0.5, T = 156 N m on the planet) at phi1 = -5.71 deg (next pair
 5.2 arcsec behind in the TCA), share of the next pair vs its effective profile size:
