@@ -47,7 +47,7 @@ def test_neighbouring_pair_shares_the_load_near_a_transition(tmp_path):
 
 def test_coarse_neighbours_miss_the_sharing(tmp_path):
     """The reason for the neighbour size: with coarse neighbouring flanks the next pair stays open."""
-    s = run_stress(case_at(-5.71, neighbour_size_mm=1.5), tmp_path / "coarse")  # 3 mm effective = the coarse size
+    s = run_stress(case_at(-5.71, neighbour_size_mm=3.0), tmp_path / "coarse")  # = the coarse size, 3 mm
     nxt, cur, _ = next_pair_share(s)
     assert nxt < 0.01 and cur > 0.99
 

@@ -119,7 +119,7 @@ def test_loaded_te_scales_with_torque(swept):
             # stiffens, so the lag grows less than for one Hertz contact. Measured at step 0: q = 1.51.
             assert q < 2 ** (2 / 3) * 1.03, (step, q)
             assert second[(step, 100.0)] > second[(step, 50.0)] - 0.02, step
-    assert single >= 2  # the middle of the cycle: one pair only
+    assert 1 <= single <= 3  # both branches are exercised: the middle of the cycle (one pair) and a transition
 
 
 def test_finished_cases_are_not_recomputed(swept):
