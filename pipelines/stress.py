@@ -342,8 +342,9 @@ def _warnings(scene, approach: float, interfaces: dict) -> list[str]:
         others = [t["force_n"] for k, t in d["teeth"].items() if k.startswith(f"{itf.member}/") and t["offset"] != 0]
         if not any(f > 0 for f in others):
             out.append(f"{itf.name} {itf.member}: the next pair of teeth is {g * 1e3:.3g} um from contact by the TCA "
-                       f"(< elastic approach {approach * 1e3:g} um) but carries no load in the FE: its flanks may be "
-                       "meshed too coarsely to close (decrease [mesh] neighbour_size_mm)")
+                       f"(< the TCA's elastic approach {approach * 1e3:g} um) but carries no load in the FE: either the "
+                       "actual approach is smaller than that gap, or its flanks are meshed too coarsely to close "
+                       "(check with a smaller [mesh] neighbour_size_mm)")
     return out
 
 
