@@ -61,8 +61,7 @@ def compare_table(summaries: dict) -> list[dict]:
                 row[f"load_share_{mem}"] = share[mem]
             row.update({
                 "max_contact_pressure_mpa": d["max_contact_pressure_mpa"],
-                "max_von_mises_mpa": max(m.get("max_von_mises_mpa", float("nan")) for m in d["members"].values())
-                if all("max_von_mises_mpa" in m for m in d["members"].values()) else None,
+                "max_von_mises_mpa": max(m["max_von_mises_mpa"] for m in d["members"].values()),
                 "edge_contact_fe": d["edge_contact"],
                 "edge_contact_members": ",".join(k for k, m in d["members"].items() if m["edge_contact"]) or "-",
                 "tca_kinds": ",".join(f"{k}:{m['tca_kind']}" for k, m in d["members"].items()),
@@ -88,16 +87,6 @@ def finding(summaries: dict) -> dict:
     f["reproduced"] = (f["new_shares_load"] and not f["new_edge_contact"] and not f["conventional_shares_load"]
                        and f["conventional_edge_contact"])
     return f
-
-
-def _member_von_mises(s: dict, art: dict) -> None:
-    """Largest von Mises [MPa] on each member's loaded part near its contact (added to the summary)."""
-    import numpy as np
-
-    from .run import _grid, _zones
-
-    for itf, member, m, sub, _ in _zones(s, art["mesh"], _grid(art["mesh"], art["result"])):
-        s["interfaces"][itf]["members"][member]["max_von_mises_mpa"] = float(np.nanmax(sub.point_data["von_mises"], initial=0.0))
 
 
 def _markdown(rows: list[dict], f: dict, summaries: dict) -> str:
@@ -150,7 +139,6 @@ def handle(args) -> int:
         vm = max(x["von_mises"] for x in lims)
         for label in LABELS:
             s = add_images(summaries[label], arts[label], tmp / label, {"von_mises": vm}, progress)
-            _member_von_mises(s, arts[label])
             s = {"kind": "run", "case": str(paths[label]), **s}
             write_summary(s, tmp / label / "summary.json")
             summaries[label] = s

@@ -12,7 +12,8 @@ the hexahedral models, the contact solve, ``result.vtu``), then writes into ``ou
   the side of the hidden body looking along the contact normal (cells in front of the tangent plane
   at the contact — the neighbouring teeth that would hide the flank — are left out); ``zone_..._pressure.png`` the same
   with the contact pressure [MPa] (edge contact shows as a ridge on the flank's border);
-* ``overview.png`` — the whole model coloured by von Mises stress;
+* ``overview.png`` — the whole model coloured by von Mises stress (each member's largest von Mises
+  stress on its loaded part, as shown, is added to the summary: ``interfaces.<i>.members.<m>.max_von_mises_mpa``);
 * ``report.md`` — the key numbers, stage times and the images; ``summary.json`` is written by the
   command (all keys of ``gearfe stress`` plus ``stages`` with the time of every stage [s]).
 
@@ -131,8 +132,11 @@ def zone_limits(summary: dict, mesh, result) -> dict:
     return lim
 
 
-def zone_images(summary: dict, mesh, result, out: Path, clim: dict | None = None, size=(1200, 900)) -> list[str]:
-    """Contact-zone images of every interface and member, and the overview (module docstring); file names.
+def zone_images(summary: dict, mesh, result, out: Path, clim: dict | None = None, size=(1200, 900)) -> tuple[list, dict]:
+    """Contact-zone images of every interface and member, and the overview (module docstring).
+
+    Returns the file names and the largest von Mises stress [MPa] on each zone's loaded part
+    ({(interface, member): value}).
 
     ``clim``: fixed colour ranges {field: max [MPa]} ('von_mises', 'contact_pressure'); a field
     not given gets the largest value over this run's zone images.
@@ -146,14 +150,14 @@ def zone_images(summary: dict, mesh, result, out: Path, clim: dict | None = None
         for f in lim:
             lim[f] = max(lim[f], float(np.nanmax(sub.point_data[f], initial=0.0)))
     lim.update(clim or {})
-    names = []
+    names, peaks = [], {}
     for itf, member, m, sub, r in zones:
         view = _view(m)
         share = summary["load_share"][itf]["members"][member]
         edge = "edge contact" if m.get("edge_contact") else "no edge contact"
         cap = f"{itf}, member {member} ({m['slave_body']} flank): load share {share:.3f}, {edge}"
         stem = zone_name(itf, member)
-        vm = float(np.nanmax(sub.point_data["von_mises"], initial=0.0))
+        vm = peaks[(itf, member)] = float(np.nanmax(sub.point_data["von_mises"], initial=0.0))
         edges = sub.n_cells <= EDGES_UP_TO
         look = np.asarray(sub.center) if sub.n_cells else np.asarray(m["tca_contact_point_mm"])  # frame the whole flank
         render_contact_zone(sub, "von_mises", look, view, out / f"{stem}.png", radius=r,
@@ -165,7 +169,7 @@ def zone_images(summary: dict, mesh, result, out: Path, clim: dict | None = None
     render_overview(grid, "von_mises", out / "overview.png", size=size,
                     caption=f"{summary.get('title') or summary.get('model')}: max von Mises {summary['max_von_mises_mpa']:.0f} MPa")
     names.append("overview.png")
-    return names
+    return names, peaks
 
 
 def _fmt(v, nd=4) -> str:
@@ -198,12 +202,14 @@ def write_report(summary: dict, path: Path) -> Path:
         if k in s:
             lines.append(f"| {k} | {_fmt(s[k])} |")
     lines += ["", "## Load share and edge contact per mesh", "",
-              "| interface | member | load share | force [N] | max pressure [MPa] | edge pressure [MPa] | edge contact | TCA contact | Hertz p0 [MPa] |",
-              "|---|---|---|---|---|---|---|---|---|"]
+              "| interface | member | load share | force [N] | max pressure [MPa] | max von Mises on the loaded part [MPa] | "
+              "edge pressure [MPa] | edge contact | TCA contact | Hertz p0 [MPa] |",
+              "|---|---|---|---|---|---|---|---|---|---|"]
     for itf, d in s["interfaces"].items():
         for mem, m in d["members"].items():
             lines.append(f"| {itf} | {mem} | {s['load_share'][itf]['members'][mem]:.4f} | {m['force_n']:.1f} | "
-                         f"{m['max_contact_pressure_mpa']:.1f} | {m['edge_pressure_mpa']:.1f} | {m['edge_contact']} | "
+                         f"{m['max_contact_pressure_mpa']:.1f} | {_fmt(m.get('max_von_mises_mpa'), 5)} | "
+                         f"{m['edge_pressure_mpa']:.1f} | {m['edge_contact']} | "
                          f"{m['tca_kind']} | {m['hertz_estimate']['p0_mpa']:.0f} |")
     lines += ["", "## Stage times [s]", "", "| stage | wall [s] |", "|---|---|"]
     for k, v in s["stages"].items():
@@ -232,10 +238,12 @@ def add_images(summary: dict, artefacts: dict, out: Path, clim: dict | None = No
     say = _say(progress)
     t1 = time.perf_counter()
     say("images: rendering off screen (pyvista)")
-    names = zone_images(summary, artefacts["mesh"], artefacts["result"], Path(out), clim)
+    names, peaks = zone_images(summary, artefacts["mesh"], artefacts["result"], Path(out), clim)
     dt = time.perf_counter() - t1
     say(f"images: {len(names)} images in {dt:.1f} s")
-    s = {**summary, "images": names, "files": [*summary["files"], *names]}
+    interfaces = {itf: {**d, "members": {k: {**m, "max_von_mises_mpa": peaks[(itf, k)]} for k, m in d["members"].items()}}
+                  for itf, d in summary["interfaces"].items()}
+    s = {**summary, "interfaces": interfaces, "images": names, "files": [*summary["files"], *names]}
     s["stages"] = {**summary["stages"], "images": summary["stages"].get("images", 0.0) + dt}
     return _report(s, Path(out), say)
 
