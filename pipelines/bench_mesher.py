@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import os
 import shutil
 import subprocess
@@ -28,24 +27,21 @@ import numpy as np
 
 from mesher import (Focus, MeshOptions, ToothGeometry, check_conformity, check_quality, gmsh_quality, mesh_gear,
                     mesh_pair, quality, tooth_region_volume, write_inp, write_msh, write_vtu)
-from tca import DiskPlunge, Gear, GearPair, run_pair_tca
+from tca import Gear, GearPair, run_pair_tca
+from tca.report_data import (table_1_1_planet, table_1_1_ring, table_1_1_sun, table_3_1_planet, table_3_1_ring,
+                              table_3_1_sun)
 
 from .cases import CASES_DIR, load_case, read_gears, read_misalignment
-
-R = math.radians
 
 
 def gears() -> dict[str, Gear]:
     return {
-        "sun (T1.1)": Gear("sun", 41, 2.0, R(20), 30.0, helix=R(10.25), hand=1, reference_helix=R(10)),
-        "planet (T1.1)": Gear("planet", 34, 2.0, R(20), 30.0, helix=R(10), hand=-1, parabola_pos=0.008,
-                              parabola_neg=0.005, plunge=DiskPlunge(100.0, 0.002)),
-        "ring (T1.1)": Gear("ring", 109, 2.0, R(20), 30.0, helix=R(9.75), hand=-1, reference_helix=R(10),
-                            internal=True, parabola_pos=0.002, parabola_neg=0.002),
-        "sun (T3.1)": Gear("sun3", 65, 4.0, R(20), 40.0),
-        "planet (T3.1)": Gear("planet3", 43, 4.0, R(20), 40.0, parabola_pos=1.25e-3, parabola_neg=1.25e-3,
-                              plunge=DiskPlunge(100.0, 6.25e-5)),
-        "ring (T3.1)": Gear("ring3", 151, 4.0, R(20), 40.0, internal=True),
+        "sun (T1.1)": table_1_1_sun(),
+        "planet (T1.1)": table_1_1_planet(),
+        "ring (T1.1)": table_1_1_ring(),
+        "sun (T3.1)": table_3_1_sun("sun3"),
+        "planet (T3.1)": table_3_1_planet(crowned=True, name="planet3"),
+        "ring (T3.1)": table_3_1_ring("ring3"),
     }
 
 

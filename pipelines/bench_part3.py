@@ -15,7 +15,6 @@ from pathlib import Path
 
 import numpy as np
 
-from tca.crowning import DiskPlunge
 from tca.dof import TrainConstraints, count_dof
 from tca.gear import Gear
 from tca.isostatic import ARCSEC, IsostaticOptions, phi1_grid, run_isostatic_tca
@@ -23,15 +22,14 @@ from tca.isostatic_linear import indexing_closed_form, linear_response
 from tca.isostatic_train import PlanetaryTrain, PlanetPlacement
 from tca.pair import GearPair
 from tca.pair_tca import TCAOptions, run_pair_tca
+from tca.report_data import indexing_error_placements, table_3_1_gears, table_3_1_planet
 
 from .tca_isostatic import plot_carrier_te, plot_sun_center
 
 d = math.radians
-SUN = Gear("sun", 65, 4.0, d(20), 40)
-PLANET = Gear("planet", 43, 4.0, d(20), 40)
-RING = Gear("ring", 151, 4.0, d(20), 40, internal=True)
-CROWNED = dataclasses.replace(PLANET, parabola_pos=1.25e-3, parabola_neg=1.25e-3, plunge=DiskPlunge(100.0, 6.25e-5))
-DET = (PlanetPlacement(tangential=0.020), PlanetPlacement(), PlanetPlacement())
+SUN, PLANET, RING = table_3_1_gears()
+CROWNED = table_3_1_planet(crowned=True)
+DET = indexing_error_placements()
 
 
 def _timed(f, *a, **k):

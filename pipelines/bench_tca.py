@@ -7,6 +7,7 @@ Run: ``python -m pipelines.bench_tca --out DIR`` (``make bench`` runs it on one 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import math
 import os
 import time
@@ -14,10 +15,11 @@ from pathlib import Path
 
 import numpy as np
 
-from tca.crowning import DiskPlunge, crowned_points, crowned_surface
+from tca.crowning import crowned_points, crowned_surface
 from tca.gear import Gear
 from tca.pair import GearPair, Misalignment
 from tca.pair_tca import TCAOptions, run_pair_tca
+from tca.report_data import table_1_1_planet, table_1_1_sun
 
 __all__ = ["main", "pairs"]
 
@@ -26,9 +28,7 @@ d = math.radians
 
 def pairs() -> dict[str, GearPair]:
     """The benchmark pairs: involute helical, and Table 1.1's sun with the double-crowned planet."""
-    sun = Gear("sun", 41, 2.0, d(20), 30, helix=d(10), hand=1)
-    planet = Gear("planet", 34, 2.0, d(20), 30, helix=d(10), hand=-1, parabola_pos=0.008, parabola_neg=0.005,
-                  plunge=DiskPlunge(100.0, 0.002))
+    sun, planet = table_1_1_sun(beta_deg=10.0), table_1_1_planet()
     pinion = Gear("pinion", 21, 2.0, d(20), 20, helix=d(10), hand=1)
     wheel = Gear("wheel", 35, 2.0, d(20), 20, helix=d(10), hand=-1)
     return {
@@ -88,7 +88,7 @@ def resolution(lines):
     return pts
 def surface_fit(lines):
     """Chebyshev representation of the disk-generated flank: interpolation error vs build time."""
-    g = Gear("planet", 34, 2.0, d(20), 30, helix=d(10), hand=-1, parabola_neg=0.005, plunge=DiskPlunge(100.0, 0.002))
+    g = dataclasses.replace(table_1_1_planet(), parabola_pos=0.0)  # Table 1.1 planet; only its coast flank is fitted
     sigma, space = g.helicoid(-1), -math.pi / 34
     (u0, u1), (v0, v1) = sigma.u_range, sigma.v_range
     rng = np.random.default_rng(1)

@@ -5,10 +5,10 @@ import math
 import numpy as np
 import pytest
 
-from tca.crowning import DiskPlunge
 from tca.gear import Gear
 from tca.pair import GearPair, Misalignment
 from tca.pair_tca import ContactKind, TCAOptions, run_pair_tca
+from tca.report_data import table_1_1_planet, table_1_1_sun
 
 d = math.radians
 ARCMIN = d(1 / 60)
@@ -16,10 +16,7 @@ ARCMIN = d(1 / 60)
 
 @pytest.fixture(scope="module")
 def sun_planet():
-    sun = Gear("sun", 41, 2.0, d(20), 30, helix=d(10), hand=1)
-    planet = Gear("planet", 34, 2.0, d(20), 30, helix=d(10), hand=-1, parabola_pos=0.008, parabola_neg=0.005,
-                  plunge=DiskPlunge(100.0, 0.002))
-    return sun, planet
+    return table_1_1_sun(beta_deg=10.0), table_1_1_planet()
 
 
 @pytest.mark.parametrize(

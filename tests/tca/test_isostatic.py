@@ -10,21 +10,18 @@ import time
 import numpy as np
 import pytest
 
-from tca.crowning import DiskPlunge
 from tca.dof import TrainConstraints
-from tca.gear import Gear
 from tca.isostatic import ARCSEC, IsostaticOptions, phi1_grid, run_isostatic_tca
 from tca.isostatic_flank import apply, rot2
 from tca.isostatic_linear import indexing_closed_form
-from tca.isostatic_train import PlanetaryTrain, PlanetPlacement
+from tca.isostatic_train import PlanetaryTrain
+from tca.report_data import indexing_error_placements, table_3_1_gears, table_3_1_planet
 
 d = math.radians
-SUN = Gear("sun", 65, 4.0, d(20), 40)
-PLANET = Gear("planet", 43, 4.0, d(20), 40)
-RING = Gear("ring", 151, 4.0, d(20), 40, internal=True)
+SUN, PLANET, RING = table_3_1_gears()
 # Table 3.1 double-crowned planet: a_p = 1.25e-3 1/mm both flanks, a_l read as 6.25e-5 1/mm with r_D = 100 mm
-CROWNED = dataclasses.replace(PLANET, parabola_pos=1.25e-3, parabola_neg=1.25e-3, plunge=DiskPlunge(100.0, 6.25e-5))
-DET = (PlanetPlacement(tangential=0.020), PlanetPlacement(), PlanetPlacement())
+CROWNED = table_3_1_planet(crowned=True)
+DET = indexing_error_placements()
 
 
 def train(planet=PLANET, **kw):

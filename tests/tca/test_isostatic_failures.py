@@ -8,14 +8,12 @@ import pytest
 
 from tca.dof import TrainConstraints
 from tca.errors import ConvergenceError, GeometryError, InputError
-from tca.gear import Gear
 from tca.isostatic import IsostaticOptions, phi1_grid, run_isostatic_tca
 from tca.isostatic_train import PlanetaryTrain, PlanetPlacement
+from tca.report_data import indexing_error_placements, table_3_1_gears
 
 d = math.radians
-SUN = Gear("sun", 65, 4.0, d(20), 40)
-PLANET = Gear("planet", 43, 4.0, d(20), 40)
-RING = Gear("ring", 151, 4.0, d(20), 40, internal=True)
+SUN, PLANET, RING = table_3_1_gears()
 
 
 def test_floating_sun_with_two_planets_is_under_constrained():
@@ -61,14 +59,14 @@ def test_bad_runs_are_rejected():
 
 def test_outer_newton_that_does_not_converge_names_the_position():
     # the fictitious-unknowns iteration needs 2-3 steps for a 20 um indexing error; allowing one must fail
-    tr = PlanetaryTrain(SUN, (PLANET,) * 3, RING, placements=(PlanetPlacement(tangential=0.02),) + (PlanetPlacement(),) * 2)
+    tr = PlanetaryTrain(SUN, (PLANET,) * 3, RING, placements=indexing_error_placements())
     with pytest.raises(ConvergenceError, match=r"Eqs. 3.21-3.22.*phi1 = 1[23].000000 deg \(position [12] of 2\)"):
         run_isostatic_tca(tr, np.radians([12.0, 13.0]), IsostaticOptions(max_outer=1))
 
 
 def test_inner_newton_that_cannot_reach_its_tolerance_names_position_and_planet():
     # 1e-14 mm is below the round-off of points ~300 mm from the origin: the subtrain solve stalls
-    tr = PlanetaryTrain(SUN, (PLANET,) * 3, RING, placements=(PlanetPlacement(tangential=0.02),) + (PlanetPlacement(),) * 2)
+    tr = PlanetaryTrain(SUN, (PLANET,) * 3, RING, placements=indexing_error_placements())
     with pytest.raises(ConvergenceError, match=r"Eq. 3.18.*phi1 = .* deg \(position \d of 3\), planet \d"):
         run_isostatic_tca(tr, np.radians([1.0, 2.0, 3.0]), IsostaticOptions(tol=1e-14))
 

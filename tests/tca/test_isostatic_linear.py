@@ -15,6 +15,7 @@ from tca.isostatic_linear import indexing_closed_form, linear_response
 from tca.isostatic_train import PlanetaryTrain, PlanetPlacement
 from tca.pair import GearPair
 from tca.pair_tca import TCAOptions, run_pair_tca
+from tca.report_data import table_3_1_gears, table_3_1_planet, table_3_1_sun
 
 d = math.radians
 
@@ -36,7 +37,7 @@ def make(design, **kw):
 def test_closed_form_reproduces_the_report_numbers():
     # section 3.4.2: s = 37.6 um, dphi1 = 21.2 arcsec, dphic = 21.2 * 0.301 = 6.38 arcsec, dE1 = 25 um
     # (the report rounds m_c1 = 0.30093 to 0.301 and r_b1; tolerances are those roundings)
-    cf = indexing_closed_form(Gear("sun", 65, 4.0, d(20), 40).r_b, d(20), 65 / 216, 0.020)
+    cf = indexing_closed_form(table_3_1_sun().r_b, d(20), 65 / 216, 0.020)
     assert cf.s * 1e3 == pytest.approx(37.6, abs=0.05)
     assert cf.dphi1 / ARCSEC == pytest.approx(21.2, abs=0.05)
     assert cf.dphic / ARCSEC == pytest.approx(6.38, abs=0.02)
@@ -110,9 +111,8 @@ def test_planar_subtrain_matches_the_3d_pair_tca():
     # contact is taken as the maximum over its shifted reference-pair branches (cubic splines). Agreement
     # within 1e-6 arcsec (measured 2e-9): the planar formulation, the tooth numbering and the switching by
     # backlash reproduce the 3D TCA.
-    sun = Gear("sun", 65, 4.0, d(20), 40)
-    planet = Gear("planet", 43, 4.0, d(20), 40, parabola_neg=1.25e-3)
-    ring = Gear("ring", 151, 4.0, d(20), 40, internal=True)
+    sun, planet, ring = table_3_1_gears()
+    planet = dataclasses.replace(planet, parabola_neg=1.25e-3)  # sun side only: the ring mesh stays involute
     pr = run_pair_tca(GearPair(sun, planet), TCAOptions(cycles=2, steps_per_cycle=40))
     ref = pr.reference
     te_ref = ref.phi2 - (65 / 43) * ref.phi1
@@ -141,12 +141,9 @@ def test_longitudinal_crowning_does_not_change_the_3d_pair_te():
     # Table 3.1's pair in 3D with and without the plunging disk (a_l = 6.25e-5 1/mm, r_D = 100 mm): same TE
     # within 1e-6 arcsec (measured 5e-9); 14.108 arcsec peak-to-peak in planet angle with the transitions
     # solved exactly (a grid of 2000 positions per cycle approaches it: 14.104; 40 positions give 13.89)
-    from tca.crowning import DiskPlunge
-
-    sun = Gear("sun", 65, 4.0, d(20), 40)
-    p = Gear("planet", 43, 4.0, d(20), 40, parabola_pos=1.25e-3, parabola_neg=1.25e-3)
-    a = run_pair_tca(GearPair(sun, p))
-    b = run_pair_tca(GearPair(sun, dataclasses.replace(p, plunge=DiskPlunge(100.0, 6.25e-5))))
+    sun, crowned = table_3_1_sun(), table_3_1_planet(crowned=True)
+    a = run_pair_tca(GearPair(sun, dataclasses.replace(crowned, plunge=None)))
+    b = run_pair_tca(GearPair(sun, crowned))
     assert np.abs(a.te_arcsec - b.te_arcsec).max() < 1e-6
     assert a.te_peak_to_peak_arcsec == pytest.approx(14.108, abs=0.002)
 

@@ -5,13 +5,13 @@ import math
 import numpy as np
 import pytest
 
-from tca.crowning import DiskPlunge
 from tca.ellipse import contact_ellipse
 from tca.errors import ConvergenceError
 from tca.gear import Gear
 from tca.newton import newton
 from tca.pair import GearPair, Misalignment
 from tca.pair_tca import ARCSEC, ContactKind, TCAOptions, run_pair_tca
+from tca.report_data import table_1_1_planet, table_1_1_sun
 from tca.surfaces import SurfacePoints
 
 d = math.radians
@@ -29,8 +29,7 @@ def involute_pair(beta, internal=False):
 @pytest.fixture(scope="module")
 def planet():
     # Table 1.1 planet: a_cd = 0.008, a_cc = 0.005 1/mm, disk r_D = 100 mm, a_pl = 0.002 1/mm
-    return Gear("planet", 34, 2.0, d(20), 30, helix=d(10), hand=-1, parabola_pos=0.008, parabola_neg=0.005,
-                plunge=DiskPlunge(100.0, 0.002))
+    return table_1_1_planet()
 
 
 @pytest.mark.parametrize("beta,internal", [(0, False), (10, False), (10, True)])
@@ -87,7 +86,7 @@ def test_misaligned_involute_helical_pair_linear_discontinuous_with_edge_contact
 def test_double_crowned_planet_with_sun_parabolic_without_edge_contact(planet, dgamma):
     # Table 1.1 (helix 10 deg both): parabolic TE, no edge contact, also with Delta gamma = +-3 arcmin
     # (the linear error absorbed). Parabola fitted to each cycle: residual < 1 % of its amplitude.
-    sun = Gear("sun", 41, 2.0, d(20), 30, helix=d(10), hand=1)
+    sun = table_1_1_sun(beta_deg=10.0)
     r = run_pair_tca(GearPair(sun, planet, Misalignment(d_gamma=dgamma)))
     assert not r.edge_contact
     assert r.max_residual < 1e-10
@@ -122,7 +121,7 @@ def test_newton_failure_names_the_position():
 
 
 def test_two_full_cycles_and_transitions(planet):
-    sun = Gear("sun", 41, 2.0, d(20), 30, helix=d(10), hand=1)
+    sun = table_1_1_sun(beta_deg=10.0)
     r = run_pair_tca(GearPair(sun, planet), TCAOptions(cycles=2, steps_per_cycle=40))
     assert len(r.phi1) == 81
     assert r.phi1[-1] - r.phi1[0] == pytest.approx(2 * 2 * math.pi / 41)

@@ -1,24 +1,23 @@
 """Planetary train data (Part 1): Eqs. (1.2)-(1.4) with clear errors, Eq. (1.16) against Table 1.2."""
 
+import dataclasses
 import math
 
 import pytest
 
-from tca.crowning import DiskPlunge
 from tca.errors import GeometryError, InputError
-from tca.gear import Gear
 from tca.planetary import PlanetaryTrain, ShaftErrors, dz_first_order
+from tca.report_data import TABLE_1_1_MEMBER_GAP, TABLE_1_1_PLANETS, table_1_1_gears
 
 d = math.radians
 
 
-def table11(n_sun=41, n_planet=34, n_ring=109, beta1=10.25, beta3=9.75, planets=5, module_ring=2.0):
-    sun = Gear("sun", n_sun, 2.0, d(20), 30, helix=d(beta1), reference_helix=d(10), hand=1)
-    planet = Gear("planet", n_planet, 2.0, d(20), 30, helix=d(10), hand=-1, parabola_pos=0.008,
-                  parabola_neg=0.005, plunge=DiskPlunge(100.0, 0.002))
-    ring = Gear("ring", n_ring, module_ring, d(20), 30, helix=d(beta3), reference_helix=d(10), hand=-1,
-                internal=True, parabola_pos=0.002, parabola_neg=0.002)
-    return PlanetaryTrain(sun, planet, ring, planets, 10.0)
+def table11(n_planet=34, beta1=10.25, beta3=9.75, planets=5, module_ring=2.0):
+    """The Table 1.1 train with one datum changed (planet teeth, helices, planet count, ring module)."""
+    sun, planet, ring = table_1_1_gears(beta_sun_deg=beta1, beta_ring_deg=beta3)
+    planet = dataclasses.replace(planet, teeth=n_planet)
+    ring = dataclasses.replace(ring, module=module_ring)
+    return PlanetaryTrain(sun, planet, ring, planets, TABLE_1_1_MEMBER_GAP)
 
 
 def test_table_1_1_train_ratios():
@@ -51,11 +50,10 @@ def test_transverse_geometry_must_be_shared():
 
 
 def test_hands_of_the_members():
-    sun = Gear("sun", 41, 2.0, d(20), 30, helix=d(10), hand=1)
-    planet = Gear("planet", 34, 2.0, d(20), 30, helix=d(10), hand=1)
-    ring = Gear("ring", 109, 2.0, d(20), 30, helix=d(10), hand=-1, internal=True)
+    sun, planet, ring = table_1_1_gears(beta_sun_deg=10.0, beta_ring_deg=10.0, crowned=False)
+    planet = dataclasses.replace(planet, hand=1)  # the sun's hand: rejected
     with pytest.raises(InputError, match=r"gears\.planet\.hand.*left \(opposite to the sun\)"):
-        PlanetaryTrain(sun, planet, ring, 5, 10.0)
+        PlanetaryTrain(sun, planet, ring, TABLE_1_1_PLANETS, TABLE_1_1_MEMBER_GAP)
 
 
 def test_planets_that_overlap_are_rejected():

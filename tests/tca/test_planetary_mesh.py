@@ -5,12 +5,11 @@ import math
 import numpy as np
 import pytest
 
-from tca.crowning import DiskPlunge
-from tca.gear import Gear
 from tca.pair import GearPair, Misalignment
 from tca.pair_tca import ARCSEC, TCAOptions, run_pair_tca
-from tca.planetary import PlanetaryTrain, ShaftErrors
+from tca.planetary import ShaftErrors
 from tca.planetary_mesh import MeshTE, member_pose, phi1_grid, run_subgear_tca, subgear_meshes, subgear_pairs
+from tca.report_data import table_1_1_train
 
 d = math.radians
 FAST = TCAOptions(cycles=1, steps_per_cycle=10)
@@ -19,21 +18,13 @@ FAST = TCAOptions(cycles=1, steps_per_cycle=10)
 @pytest.fixture(scope="module")
 def involute_train():
     # conventional involute double-helical train, all helix angles 10 deg: conjugate, zero TE everywhere
-    sun = Gear("sun", 41, 2.0, d(20), 30, helix=d(10), hand=1)
-    planet = Gear("planet", 34, 2.0, d(20), 30, helix=d(10), hand=-1)
-    ring = Gear("ring", 109, 2.0, d(20), 30, helix=d(10), hand=-1, internal=True)
-    return PlanetaryTrain(sun, planet, ring, 5, 10.0)
+    return table_1_1_train(beta_sun_deg=10.0, beta_ring_deg=10.0, crowned=False)
 
 
 @pytest.fixture(scope="module")
 def train():
     # Table 1.1 with beta1 = 10.25, beta2 = 10, beta3 = 9.75 deg (transverse geometry of the 10 deg design)
-    sun = Gear("sun", 41, 2.0, d(20), 30, helix=d(10.25), reference_helix=d(10), hand=1)
-    planet = Gear("planet", 34, 2.0, d(20), 30, helix=d(10), hand=-1, parabola_pos=0.008, parabola_neg=0.005,
-                  plunge=DiskPlunge(100.0, 0.002))
-    ring = Gear("ring", 109, 2.0, d(20), 30, helix=d(9.75), reference_helix=d(10), hand=-1, internal=True,
-                parabola_pos=0.002, parabola_neg=0.002)
-    return PlanetaryTrain(sun, planet, ring, 5, 10.0)
+    return table_1_1_train(beta_sun_deg=10.25, beta_ring_deg=9.75)
 
 
 def test_ideal_train_has_zero_ring_te_at_every_planet(involute_train):

@@ -5,12 +5,11 @@ import math
 import numpy as np
 import pytest
 
-from tca.crowning import DiskPlunge
 from tca.errors import ConvergenceError
-from tca.gear import Gear
 from tca.pair_tca import ARCSEC, TCAOptions
-from tca.planetary import PlanetaryTrain, ShaftErrors
+from tca.planetary import ShaftErrors
 from tca.planetary_regulation import nominal_peak, periodic_peak, regulate_member, regulate_train, twin_te
+from tca.report_data import table_1_1_train
 
 d = math.radians
 # 20 steps per cycle (the case files use 40): the peaks are refined by a parabola through three samples
@@ -20,12 +19,7 @@ TABLE_1_2 = [(0, 0.0, 0.0), (20, -4.44, -4.6), (-20, 4.44, 4.6), (5, -1.11, -1.1
 
 @pytest.fixture(scope="module")
 def train():
-    sun = Gear("sun", 41, 2.0, d(20), 30, helix=d(10.25), reference_helix=d(10), hand=1)
-    planet = Gear("planet", 34, 2.0, d(20), 30, helix=d(10), hand=-1, parabola_pos=0.008, parabola_neg=0.005,
-                  plunge=DiskPlunge(100.0, 0.002))
-    ring = Gear("ring", 109, 2.0, d(20), 30, helix=d(9.75), reference_helix=d(10), hand=-1, internal=True,
-                parabola_pos=0.002, parabola_neg=0.002)
-    return PlanetaryTrain(sun, planet, ring, 5, 10.0)
+    return table_1_1_train(beta_sun_deg=10.25, beta_ring_deg=9.75)
 
 
 @pytest.fixture(scope="module")

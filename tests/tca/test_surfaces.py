@@ -8,6 +8,7 @@ import pytest
 from tca.crowning import DiskPlunge, _Disk
 from tca.errors import GeometryError, InputError
 from tca.gear import Gear
+from tca.report_data import table_1_1_planet
 
 d = math.radians
 
@@ -155,8 +156,7 @@ def test_plunge_more_curved_than_the_disk_is_rejected():
 
 
 def test_crowned_surface_interpolation_error_is_bounded():
-    g = Gear("planet", 34, 2.0, d(20), 30, helix=d(10), hand=-1, parabola_pos=0.008, parabola_neg=0.005,
-             plunge=DiskPlunge(100, 0.002))
+    g = table_1_1_planet()
     for side in (1, -1):
         assert g.surface(side).fit_error < 1e-9
 
