@@ -33,7 +33,7 @@ from scipy.interpolate import CubicSpline
 from .contact import PlacedFlank, corner_system, edge_edge_system, edge_system, tangency_system
 from .ellipse import contact_ellipse
 from .errors import ConvergenceError, GeometryError, InputError
-from .newton import newton
+from .newton import NewtonResult, newton
 from .pair import GearPair
 
 __all__ = ["TCAOptions", "ContactKind", "ReferencePairSolution", "PairTCAResult", "run_pair_tca", "solve_reference_pair", "bounded_pass", "ellipse_outlines",
@@ -465,42 +465,53 @@ def _bounded_contacts(pair, f1, f2, phis, sel, phi2_guess, opts, samples: int = 
     for fl in (1, 2):
         fi, fo = flanks[fl - 1], flanks[2 - fl]
         u_of_r = _u_of_radius(fo)
-        for b in (1, 2, 3):
-            (t0, t1), on_b = _boundary_param(fi, b)
+        bounds = [_boundary_param(fi, b) for b in (1, 2, 3)]
 
-            def project(tt, ph2g):
-                """Put boundary points t (n, m) on the other flank; returns (uv (n,m,2), x_other, ok)."""
-                shape = tt.shape
-                uv = on_b(tt.ravel())
-                P = np.repeat(np.arange(n), shape[1])
-                ph1 = phis[sel][P]
-                ph2 = ph2g[P]
-                if fl == 1:
-                    pw, _, _ = f1.world(uv[:, 0], uv[:, 1], ph1)
-                    Rf, _, tf, _ = f2.frame(ph2)
-                else:
-                    pw, _, _ = f2.world(uv[:, 0], uv[:, 1], ph2)
-                    Rf, _, tf, _ = f1.frame(ph1)
-                loc = np.einsum("nji,nj->ni", Rf, pw.r - tf)
-                g = np.stack([u_of_r(np.hypot(loc[:, 0], loc[:, 1])), loc[:, 2], ph2], -1)
-                rr = newton(corner_system(f1, f2, ph1, fl, uv), g, tol=opts.tol, maxiter=15, raise_on_failure=False,
-                            max_backtracks=6)
-                lo_ = fo.surface.evaluate(rr.x[:, 0], rr.x[:, 1])
-                con = fo.constraints(lo_, rr.x[:, 0])
-                return uv.reshape(shape + (2,)), rr, lo_, con
+        def project(tts, ph2gs):
+            """Put boundary points t (n, m) of the three boundaries on the other flank in one batched solve;
+            per boundary: (uv (n, m, 2), NewtonResult, constraints of the other flank)."""
+            uvs, ph1s, ph2s, shapes = [], [], [], []
+            for ((_, on_b), tt, ph2g) in zip(bounds, tts, ph2gs):
+                P = np.repeat(np.arange(n), tt.shape[1])
+                uvs.append(on_b(tt.ravel()))
+                ph1s.append(phis[sel][P])
+                ph2s.append(ph2g[P])
+                shapes.append(tt.shape)
+            uv, ph1, ph2 = np.concatenate(uvs), np.concatenate(ph1s), np.concatenate(ph2s)
+            if fl == 1:
+                pw, _, _ = f1.world(uv[:, 0], uv[:, 1], ph1)
+                Rf, _, tf, _ = f2.frame(ph2)
+            else:
+                pw, _, _ = f2.world(uv[:, 0], uv[:, 1], ph2)
+                Rf, _, tf, _ = f1.frame(ph1)
+            loc = np.einsum("nji,nj->ni", Rf, pw.r - tf)
+            g = np.stack([u_of_r(np.hypot(loc[:, 0], loc[:, 1])), loc[:, 2], ph2], -1)
+            rr = newton(corner_system(f1, f2, ph1, fl, uv), g, tol=opts.tol, maxiter=15, raise_on_failure=False,
+                        max_backtracks=6)
+            con = fo.constraints(fo.surface.evaluate(rr.x[:, 0], rr.x[:, 1]), rr.x[:, 0])
+            out, k = [], 0
+            for uvb, shape in zip(uvs, shapes):
+                sl = slice(k, k + len(uvb))
+                k += len(uvb)
+                out.append((uvb.reshape(shape + (2,)), NewtonResult(rr.x[sl], rr.residual[sl], rr.iterations[sl],
+                                                                    rr.converged[sl]), con[sl]))
+            return out
 
-            # level 1: uniform samples; level 2: samples around the best level-1 sample (sharp maxima)
-            T1 = np.broadcast_to(np.linspace(t0, t1, samples), (n, samples))
-            uv1, r1, _, con1 = project(T1, phi2_guess)
+        # level 1: uniform samples; level 2: samples around the best level-1 sample (sharp maxima)
+        T1s = [np.broadcast_to(np.linspace(t0, t1, samples), (n, samples)) for (t0, t1), _ in bounds]
+        lev1 = project(T1s, [phi2_guess] * 3)
+        T2s, g2s, v1s = [], [], []
+        for ((t0, t1), _), T1, (uv1, r1, con1) in zip(bounds, T1s, lev1):
             ins1 = np.all(con1 <= opts.area_tol, -1) & r1.converged
             v1 = np.where(ins1, r1.x[:, 2], -np.inf).reshape(n, samples)
             k1 = np.argmax(v1, 1)
             dt = (t1 - t0) / (samples - 1)
             lo_t = np.clip(T1[np.arange(n), k1] - dt, t0, t1)
             hi_t = np.clip(T1[np.arange(n), k1] + dt, t0, t1)
-            T2 = lo_t[:, None] + (hi_t - lo_t)[:, None] * np.linspace(0, 1, samples)[None, :]
-            g2 = np.where(np.isfinite(v1.max(1)), v1.max(1), phi2_guess)
-            uv2, r2, lo2, con2 = project(T2, g2)
+            T2s.append(lo_t[:, None] + (hi_t - lo_t)[:, None] * np.linspace(0, 1, samples)[None, :])
+            g2s.append(np.where(np.isfinite(v1.max(1)), v1.max(1), phi2_guess))
+        lev2 = project(T2s, g2s)
+        for b, ((t0, t1), _), T1, T2, (uv1, r1, con1), (uv2, r2, con2) in zip((1, 2, 3), bounds, T1s, T2s, lev1, lev2):
             # keep both levels (level 1 catches edge-to-edge crossings anywhere along the boundary)
             T = np.concatenate([T1, T2], 1)
             order = np.argsort(T, 1, kind="stable")
