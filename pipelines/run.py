@@ -109,10 +109,10 @@ def _zones(summary: dict, mesh, grid) -> list:
             own = part[cells[np.argmin(np.linalg.norm(centres[cells] - p, axis=1))]]  # the part carrying the contact
             cells = cells[part[cells] == own]
             r = _zone_radius(m)
-            d = centres[cells] - p
+            off = centres[cells] - p
             # behind the tangent plane only: the convex loaded flank stays, the neighbouring teeth that
             # would hide it from a camera on the contact normal go
-            near = cells[(np.linalg.norm(d, axis=1) < 3 * r) & (d @ _view(m) < 0.0)]
+            near = cells[(np.linalg.norm(off, axis=1) < 3 * r) & (off @ _view(m) < 0.0)]
             out.append((itf, member, m, grid.extract_cells(near), r))
     return out
 
@@ -123,13 +123,15 @@ def _grid(mesh, result):
     return to_pyvista(mesh, {"von_mises": result.von_mises, "contact_pressure": np.nan_to_num(result.contact_pressure)})
 
 
+def _maxima(zones) -> dict:
+    """Largest von Mises and contact pressure [MPa] over the sub-grids of `zones`."""
+    return {f: max((float(np.nanmax(z[3].point_data[f], initial=0.0)) for z in zones), default=0.0)
+            for f in ("von_mises", "contact_pressure")}
+
+
 def zone_limits(summary: dict, mesh, result) -> dict:
     """Largest von Mises and contact pressure [MPa] on the flanks shown in the zone images."""
-    lim = {"von_mises": 0.0, "contact_pressure": 0.0}
-    for *_, sub, _ in _zones(summary, mesh, _grid(mesh, result)):
-        for f in lim:
-            lim[f] = max(lim[f], float(np.nanmax(sub.point_data[f], initial=0.0)))
-    return lim
+    return _maxima(_zones(summary, mesh, _grid(mesh, result)))
 
 
 def zone_images(summary: dict, mesh, result, out: Path, clim: dict | None = None, size=(1200, 900)) -> tuple[list, dict]:
@@ -145,11 +147,7 @@ def zone_images(summary: dict, mesh, result, out: Path, clim: dict | None = None
 
     grid = _grid(mesh, result)
     zones = _zones(summary, mesh, grid)
-    lim = {"von_mises": 0.0, "contact_pressure": 0.0}
-    for *_, sub, _ in zones:
-        for f in lim:
-            lim[f] = max(lim[f], float(np.nanmax(sub.point_data[f], initial=0.0)))
-    lim.update(clim or {})
+    lim = {**_maxima(zones), **(clim or {})}
     names, peaks = [], {}
     for itf, member, m, sub, r in zones:
         view = _view(m)

@@ -79,7 +79,7 @@ from tca.planetary_regulation import nominal_peak, regulate_member, twin_te
 from .cases import ARCMIN, read_gears, read_pair, read_tca_options
 from .schema import Table
 from .stress_model import FESettings, mesh_scene, solve_scene
-from .stress_results import summarize
+from .stress_results import member_teeth, summarize
 from .stress_scene import PHASES, SizeRules, pair_scene, twin_scene
 
 __all__ = ["StressCase", "read_stress_case", "run_stress", "build_scene", "MODELS", "REGULATION"]
@@ -331,15 +331,15 @@ def _finite(x):
 
 def _warnings(scene, approach: float, interfaces: dict) -> list[str]:
     """Loaded meshes whose next pair of teeth is closer to contact (TCA) than the elastic approach [mm]
-    but carries nothing in the FE: its flanks are then too coarse to close (``[mesh] neighbour_size_mm``).
-    """
+    but carries nothing in the FE: the actual approach is smaller than that gap, or its flanks are too coarse
+    to close (``[mesh] neighbour_size_mm``)."""
     out = []
     for itf in scene.interfaces:
         g = itf.contact.next_gap
         d = interfaces[itf.name]
         if not (g < approach and d["members"][itf.member]["force_n"] > 0):
             continue
-        others = [t["force_n"] for k, t in d["teeth"].items() if k.startswith(f"{itf.member}/") and t["offset"] != 0]
+        others = [t["force_n"] for t in member_teeth(itf, interfaces) if t["offset"] != 0]
         if not any(f > 0 for f in others):
             out.append(f"{itf.name} {itf.member}: the next pair of teeth is {g * 1e3:.3g} um from contact by the TCA "
                        f"(< the TCA's elastic approach {approach * 1e3:g} um) but carries no load in the FE: either the "

@@ -49,7 +49,7 @@ from tca.pair_tca import ContactKind
 
 from .stress_scene import Scene
 
-__all__ = ["EDGE_FRACTION", "boundary_nodes", "pressure_at", "pair_results", "summarize"]
+__all__ = ["EDGE_FRACTION", "boundary_nodes", "pressure_at", "pair_results", "member_teeth", "summarize"]
 
 EDGE_FRACTION = 0.05
 
@@ -147,10 +147,14 @@ def _interfaces(scene: Scene, rows: list[dict]) -> tuple[dict, dict]:
     return res, share
 
 
+def member_teeth(itf, interfaces: dict) -> list[dict]:
+    """The per-tooth-pair results of one interface member (rows with 'offset' from its loaded pair)."""
+    return [t for k, t in interfaces[itf.name]["teeth"].items() if k.startswith(f"{itf.member}/")]
+
+
 def _mesh_ratio(itf, interfaces: dict) -> float:
     """Instantaneous ratio of one member's mesh: its loaded tooth pairs' ratios weighted by their FE forces."""
-    teeth = interfaces[itf.name]["teeth"]
-    rows = [t for k, t in teeth.items() if k.startswith(f"{itf.member}/") and t["force_n"] > 0]
+    rows = [t for t in member_teeth(itf, interfaces) if t["force_n"] > 0]
     tot = sum(t["force_n"] for t in rows)
     if tot <= 0:
         return abs(itf.contact.ratio)

@@ -500,7 +500,7 @@ def _bounded_contacts(pair, f1, f2, phis, sel, phi2_guess, opts, samples: int = 
         # level 1: uniform samples; level 2: samples around the best level-1 sample (sharp maxima)
         T1s = [np.broadcast_to(np.linspace(t0, t1, samples), (n, samples)) for (t0, t1), _ in bounds]
         lev1 = project(T1s, [phi2_guess] * 3)
-        T2s, g2s, v1s = [], [], []
+        T2s, g2s = [], []
         for ((t0, t1), _), T1, (uv1, r1, con1) in zip(bounds, T1s, lev1):
             ins1 = np.all(con1 <= opts.area_tol, -1) & r1.converged
             v1 = np.where(ins1, r1.x[:, 2], -np.inf).reshape(n, samples)
