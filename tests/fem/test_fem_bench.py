@@ -1,10 +1,10 @@
-"""Smoke run of the FE benchmark on small meshes (the full run is ``python -m pipelines.bench_fem``)."""
+"""Smoke run of the FE benchmark on small meshes (the full run is ``python -m pipelines.bench.fem``)."""
 
 import json
 
 import pytest
 
-from pipelines import bench_fem
+from pipelines.bench import fem as bench_fem
 
 
 @pytest.mark.slow

@@ -9,7 +9,7 @@ import pytest
 
 from mesher import MeshOptions, check_conformity, check_quality, mesh_gear, mesh_pair
 from mesher.pair_model import member_pair
-from pipelines.cases import CASES_DIR, load_case, read_gears, read_misalignment
+from pipelines.cases.reader import CASES_DIR, load_case, read_gears, read_misalignment
 from tca import GearPair, InputError, Misalignment, run_pair_tca
 
 from .gears import gear

@@ -8,7 +8,7 @@ import math
 import pytest
 
 from pipelines.bench import AREAS
-from pipelines.bench_stress import QUANTITIES, choose_refine, errors_of, main
+from pipelines.bench.stress import QUANTITIES, choose_refine, errors_of, main
 
 Q = math.sqrt(2.0)
 
@@ -47,7 +47,7 @@ def test_choose_refine_takes_the_cheapest_level_within_tolerance():
 
 
 def test_stress_area_is_registered():
-    assert AREAS["stress"][0] == "pipelines.bench_stress"
+    assert AREAS["stress"][0] == "pipelines.bench.stress"
     for area in ("tca", "fem", "mesher", "part1", "part2", "part3"):
         assert area in AREAS
 

@@ -5,7 +5,7 @@ import json
 import meshio
 import pytest
 
-from pipelines.cases import CASES_DIR
+from pipelines.cases.reader import CASES_DIR
 from pipelines.cli import main
 
 CASE = f"""
@@ -78,8 +78,8 @@ def test_bad_case_exits_2_without_files(tmp_path, capsys, edit, fragment):
 
 
 def test_the_shipped_mesh_cases_parse():
-    # full runs of these cases are in pipelines.bench_mesher; here: they exist and are read strictly
-    from pipelines.cases import load_case
+    # full runs of these cases are in pipelines.bench.mesher; here: they exist and are read strictly
+    from pipelines.cases.reader import load_case
 
     for p in sorted(CASES_DIR.glob("mesh_*.toml")):
         c = load_case(p)

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from pipelines.cases import CASES_DIR
+from pipelines.cases.reader import CASES_DIR
 from pipelines.cli import main
 
 FAST_PAIR = """

@@ -2,7 +2,7 @@
 
 import pytest
 
-from pipelines.convergence import richardson
+from pipelines.bench.convergence import richardson
 from tca.errors import InputError
 
 

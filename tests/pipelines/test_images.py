@@ -3,7 +3,7 @@
 import numpy as np
 
 from mesher.hexmesh import HexMesh
-from pipelines.images import image_is_blank, render_contact_zone, render_overview, to_pyvista
+from pipelines.render.images import image_is_blank, render_contact_zone, render_overview, to_pyvista
 
 
 def box_mesh(n=6):

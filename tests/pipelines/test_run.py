@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from pipelines.cli import main
-from pipelines.images import image_is_blank
+from pipelines.render.images import image_is_blank
 
 CASES = Path(__file__).resolve().parents[2] / "pipelines" / "cases"
 PAIR = CASES / "stress_pair_small.toml"
@@ -59,8 +59,8 @@ def test_run_writes_every_stage_output(pair_run, capsys):
               "solve_s", "load_share", "position"):
         assert k in s, k
     # the default position is the maximum of the TE over the TCA grid (the report's choice)
-    from pipelines.cases import load_case
-    from pipelines.stress import read_stress_case
+    from pipelines.cases.reader import load_case
+    from pipelines.stress.case import read_stress_case
     from tca.pair_tca import run_pair_tca
 
     case = read_stress_case(load_case(PAIR))

@@ -15,9 +15,10 @@ import meshio
 import numpy as np
 import pytest
 
-from pipelines.cases import CASES_DIR, load_case
+from pipelines.cases.reader import CASES_DIR, load_case
 from pipelines.cli import main
-from pipelines.stress import read_stress_case, run_stress
+from pipelines.stress.case import read_stress_case
+from pipelines.stress.run import run_stress
 from tca.errors import InputError
 from tca.pair_tca import run_pair_tca
 

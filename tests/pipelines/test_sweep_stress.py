@@ -13,8 +13,8 @@ from pathlib import Path
 import pytest
 
 from pipelines.cli import main
-from pipelines.cmd_sweep import build_grid
-from pipelines.images import image_is_blank
+from pipelines.cli.sweep import build_grid
+from pipelines.render.images import image_is_blank
 
 CASES = Path(__file__).resolve().parents[2] / "pipelines" / "cases"
 SWEEP = """

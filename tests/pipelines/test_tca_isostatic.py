@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from pipelines.cases import CASES_DIR
+from pipelines.cases.reader import CASES_DIR
 from pipelines.cli import main
 
 CASES = {p.stem: p for p in sorted(CASES_DIR.glob("part3_*.toml"))}

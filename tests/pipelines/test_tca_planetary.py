@@ -6,9 +6,9 @@ from pathlib import Path
 
 import pytest
 
-from pipelines.cases import CASES_DIR, load_case
+from pipelines.cases.reader import CASES_DIR, load_case
 from pipelines.cli import main
-from pipelines.tca_planetary import read_installment, read_train
+from pipelines.cases.planetary import read_installment, read_train
 
 REG = CASES_DIR / "part1_planetary_regulation.toml"
 DGAMMA = CASES_DIR / "part1_twin_dgamma.toml"

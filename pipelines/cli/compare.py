@@ -1,0 +1,174 @@
+"""Two designs, one load case each, side by side (Numerical Example 1.3, Fig. 1.9).
+
+``gearfe compare NEW.toml CONVENTIONAL.toml --out DIR`` runs both stress cases through
+:func:`pipelines.report.run.run_pipeline` into ``DIR/new`` and ``DIR/conventional`` (each a complete
+``gearfe run`` folder) and writes:
+
+* ``compare_zones.png`` — the contact zones of every mesh (rows: designs; columns: interface and
+  member, e.g. the planet members 2a and 2b with the sun and with the ring) coloured by von Mises
+  stress on ONE colour range for both designs, as Fig. 1.9 (a) and (b);
+  ``compare_pressure.png`` — the same with the contact pressure (each design on its own range:
+  an edge contact's peak is singular and would wash out the other design);
+  ``compare_overview.png`` — the two whole models;
+* ``compare.md`` / ``compare.csv`` / ``compare.json`` — per design and interface: load share of
+  members a and b, maximum contact pressure, maximum von Mises stress, edge contact (TCA and FE),
+  plus the design-level maxima and the torque balance.
+
+Both cases must be of the same model and torque (designs are compared under one load).
+The report's finding is evaluated, not assumed: ``finding`` in compare.json says whether the new
+design shares the load between the members without edge contact and the conventional one loads
+one member with edge contact (a member "shares" when it carries at least ``SHARED`` of the
+interface's force).
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import io
+import json
+import time
+from pathlib import Path
+
+from tca.errors import InputError
+
+from pipelines.cli.run import add_overrides, progress, read_with_overrides, write_summary
+from pipelines.cli.outdir import staged_output
+from pipelines.render.plots import side_by_side
+from pipelines.report.run import add_images, run_pipeline, zone_limits, zone_name
+
+__all__ = ["add_args", "handle", "compare_table", "finding", "SHARED", "LABELS"]
+
+LABELS = ("new", "conventional")
+SHARED = 0.2  # a member carrying at least this fraction of an interface's force shares the load
+
+
+def add_args(p: argparse.ArgumentParser) -> None:
+    p.add_argument("new", help="stress case of the new design, e.g. pipelines/cases/stress_part1_new.toml")
+    p.add_argument("conventional", help="stress case of the conventional design")
+    p.add_argument("--out", required=True, help="output folder")
+    add_overrides(p)
+
+
+def compare_table(summaries: dict) -> list[dict]:
+    """One row per design and interface: load shares, peaks, edge contact."""
+    rows = []
+    for label, s in summaries.items():
+        for itf, d in s["interfaces"].items():
+            share = s["load_share"][itf]["members"]
+            row = {"design": label, "interface": itf}
+            for mem in sorted(share):
+                row[f"load_share_{mem}"] = share[mem]
+            row.update({
+                "max_contact_pressure_mpa": d["max_contact_pressure_mpa"],
+                "max_von_mises_mpa": max(m["max_von_mises_mpa"] for m in d["members"].values()),
+                "edge_contact_fe": d["edge_contact"],
+                "edge_contact_members": ",".join(k for k, m in d["members"].items() if m["edge_contact"]) or "-",
+                "tca_kinds": ",".join(f"{k}:{m['tca_kind']}" for k, m in d["members"].items()),
+            })
+            rows.append(row)
+        rows.append({"design": label, "interface": "(model)", "max_contact_pressure_mpa": s["max_contact_pressure_mpa"],
+                     "max_von_mises_mpa": s["max_von_mises_mpa"], "edge_contact_fe": s["fe_edge_contact"],
+                     "edge_contact_tca": s["edge_contact"], "max_fillet_stress_mpa": s["max_fillet_stress_mpa"],
+                     "torque_balance_error": s["torque_balance_error"], "dofs": s["dofs"]})
+    return rows
+
+
+def _sharing(s: dict) -> bool:
+    return all(min(sh["members"].values()) >= SHARED and len(sh["members"]) > 1 for sh in s["load_share"].values())
+
+
+def finding(summaries: dict) -> dict:
+    """The report's finding checked on the results (module docstring)."""
+    new, conv = (summaries[k] for k in LABELS)
+    f = {"new_shares_load": _sharing(new), "new_edge_contact": bool(new["fe_edge_contact"] or new["edge_contact"]),
+         "conventional_shares_load": _sharing(conv),
+         "conventional_edge_contact": bool(conv["fe_edge_contact"] or conv["edge_contact"]), "shared_threshold": SHARED}
+    f["reproduced"] = (f["new_shares_load"] and not f["new_edge_contact"] and not f["conventional_shares_load"]
+                       and f["conventional_edge_contact"])
+    return f
+
+
+def _markdown(rows: list[dict], f: dict, summaries: dict) -> str:
+    keys = []
+    for r in rows:
+        keys += [k for k in r if k not in keys]
+    lines = ["# New vs conventional design (Numerical Example 1.3, Fig. 1.9)", ""]
+    for label, s in summaries.items():
+        lines.append(f"- **{label}**: {s.get('title', '')} (`{s.get('case', '')}`), φ1 = {s['position']['phi1_deg']:.4f} deg, "
+                     f"{s['dofs']} DOF, total {s['total_s']:.1f} s")
+    lines += ["", "| " + " | ".join(keys) + " |", "|" + "---|" * len(keys)]
+    for r in rows:
+        lines.append("| " + " | ".join(_cell(r.get(k, "")) for k in keys) + " |")
+    lines += ["", "## Finding", "",
+              f"- new design shares the load between the members (each >= {SHARED:g} of every interface's force): "
+              f"{f['new_shares_load']}; edge contact: {f['new_edge_contact']}",
+              f"- conventional design shares the load: {f['conventional_shares_load']}; edge contact: "
+              f"{f['conventional_edge_contact']}",
+              f"- the report's finding (new: shared, no edge contact; conventional: one member, edge contact) "
+              f"reproduced: **{f['reproduced']}**", "",
+              "von Mises images share one colour range; contact-pressure images have one range per design.", "",
+              "![zones](compare_zones.png)", "", "![pressure](compare_pressure.png)", "", "![overview](compare_overview.png)"]
+    return "\n".join(lines) + "\n"
+
+
+def _cell(v) -> str:
+    if isinstance(v, float):
+        return f"{v:.4g}"
+    return str(v)
+
+
+def handle(args) -> int:
+    t0 = time.perf_counter()
+    cases = {LABELS[0]: read_with_overrides(args.new, args), LABELS[1]: read_with_overrides(args.conventional, args)}
+    a, b = cases.values()
+    if a.model != b.model:
+        raise InputError("model", b.model, f"the model of the new design's case, {a.model!r} (compare like with like)")
+    if abs(a.torque - b.torque) > 1e-9 * a.torque:
+        raise InputError("torque_nm", b.torque * 1e-3, f"the new design's torque {a.torque * 1e-3:g} N m (one load case)")
+    paths = {LABELS[0]: args.new, LABELS[1]: args.conventional}
+    with staged_output(args.out) as tmp:
+        tmp = Path(tmp)
+        summaries, arts = {}, {}
+        for label, case in cases.items():
+            progress(f"== {label} design: {paths[label]}")
+            arts[label] = {}
+            (tmp / label).mkdir()
+            summaries[label] = run_pipeline(case, tmp / label, progress, images=False, artefacts=arts[label])
+        lims = [zone_limits(summaries[k], arts[k]["mesh"], arts[k]["result"]) for k in LABELS]
+        vm = max(x["von_mises"] for x in lims)
+        for label in LABELS:
+            s = add_images(summaries[label], arts[label], tmp / label, {"von_mises": vm}, progress)
+            s = {"kind": "run", "case": str(paths[label]), **s}
+            write_summary(s, tmp / label / "summary.json")
+            summaries[label] = s
+            arts[label].clear()  # free the meshes and fields
+        zones = [(itf, mem) for itf, d in summaries[LABELS[0]]["interfaces"].items() for mem in d["members"]]
+        imgs, pimgs, titles = [], [], []
+        for label in LABELS:
+            for itf, mem in zones:
+                imgs.append(tmp / label / f"{zone_name(itf, mem)}.png")
+                pimgs.append(tmp / label / f"{zone_name(itf, mem)}_pressure.png")
+                sh = summaries[label]["load_share"][itf]["members"][mem]
+                titles.append(f"({'a' if label == LABELS[0] else 'b'}) {label}: {itf}, member {mem}, share {sh:.2f}")
+        side_by_side(imgs, titles, tmp / "compare_zones.png", "von Mises stress [MPa] on the loaded flanks", ncols=len(zones))
+        side_by_side(pimgs, titles, tmp / "compare_pressure.png", "contact pressure [MPa]", ncols=len(zones))
+        side_by_side([tmp / k / "overview.png" for k in LABELS], list(LABELS), tmp / "compare_overview.png",
+                     "von Mises stress [MPa]")
+        rows = compare_table(summaries)
+        f = finding(summaries)
+        keys = []
+        for r in rows:
+            keys += [k for k in r if k not in keys]
+        buf = io.StringIO()
+        w = csv.DictWriter(buf, fieldnames=keys)
+        w.writeheader()
+        w.writerows(rows)
+        (tmp / "compare.csv").write_text(buf.getvalue())
+        (tmp / "compare.md").write_text(_markdown(rows, f, summaries))
+        (tmp / "compare.json").write_text(json.dumps({"rows": rows, "finding": f, "cases": {k: str(v) for k, v in paths.items()},
+                                                      "elapsed_s": time.perf_counter() - t0}, indent=2) + "\n")
+    print((Path(args.out) / "compare.md").read_text())
+    print(f"images: {Path(args.out) / 'compare_zones.png'}, {Path(args.out) / 'compare_pressure.png'}, "
+          f"{Path(args.out) / 'compare_overview.png'}; each design's run in {args.out}/new and {args.out}/conventional")
+    return 0

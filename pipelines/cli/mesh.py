@@ -1,0 +1,155 @@
+"""Hexahedral model of a gear pair at a TCA position (or of one gear): mesh.vtu, mesh.inp, mesh.msh, summary.json.
+
+A mesh case names its gear pair, either inline like a ``kind = "pair"`` TCA case (``[gears.*]``,
+``driver``, ``driven``, optional ``center_distance_mm``, ``[misalignment]``, ``[tca]``) or by
+``pair_case = "part1_sun_planet.toml"`` (relative to the mesh case, then ``pipelines/cases``), and adds::
+
+    position = "max_te"          # TCA position: an index, "max_te" or "min_te"
+    # gear = "sun"               # instead of a pair: one gear, no TCA, uniform coarse mesh
+    [mesh]
+    teeth = 3                    # teeth per gear model (Fig. 1.8)
+    rim_depth_mm = 6.0           # rim below the root circle (default 3 modules)
+    coarse_size_mm = 1.0         # element size where nothing happens (default 0.5 module)
+    contact_size_mm = 0.25       # at the TCA contact point (default 0.125 module)
+    fillet_size_mm = 0.5         # on the loaded tooth's fillets (default 2 x contact size)
+    growth = 1.3                 # size ratio of neighbouring elements
+    gap_mm = 10.0                # double-helical members separated by F (omit: single member)
+    element_type = "C3D8I"       # in mesh.inp: C3D8 (default), C3D8I or C3D8R
+
+Writes ``mesh.vtu`` (sets as point/cell data), ``mesh.inp`` (ABAQUS/CalculiX with *NSET, *ELSET,
+*SURFACE), ``mesh.msh`` (gmsh) and ``summary.json``; nothing when the case is invalid.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import time
+from pathlib import Path
+
+import numpy as np
+
+from tca.errors import InputError
+
+from pipelines.cases.reader import CASES_DIR, load_case, read_gears, read_pair, read_tca_options
+from pipelines.cli.tca import to_json
+from pipelines.cli.outdir import staged_output
+from pipelines.cases.schema import Table
+
+__all__ = ["add_args", "handle", "read_mesh_options", "build"]
+
+
+def add_args(p: argparse.ArgumentParser) -> None:
+    p.add_argument("case", help="mesh case file (TOML), e.g. pipelines/cases/mesh_part1_sun_planet.toml")
+    p.add_argument("--out", required=True, help="output folder")
+
+
+def read_mesh_options(t: Table | None):
+    """MeshOptions and the .inp element type from a ``[mesh]`` table."""
+    from mesher import MeshOptions
+
+    if t is None:
+        return MeshOptions(), "C3D8"
+    o = MeshOptions(
+        teeth=t.get("teeth", int, 3, lo=1, hi=2000),
+        rim_depth=t.get("rim_depth_mm", float, None, lo=0.0, lo_open=True),
+        coarse_size=t.get("coarse_size_mm", float, None, lo=0.0, lo_open=True),
+        contact_size=t.get("contact_size_mm", float, None, lo=0.0, lo_open=True),
+        fillet_size=t.get("fillet_size_mm", float, None, lo=0.0, lo_open=True),
+        growth=t.get("growth", float, 1.3, lo=1.0, hi=3.0),
+        gap=t.get("gap_mm", float, None, lo=0.0),
+    )
+    et = t.get("element_type", str, "C3D8", choices=("C3D8", "C3D8I", "C3D8R"))
+    t.done()
+    return o, et
+
+
+def _pair_source(case: Table, path: Path) -> Table:
+    """The table holding the pair definition: the case itself or the file named by pair_case."""
+    ref = case.get("pair_case", str, None)
+    if ref is None:
+        return case
+    if case.has("gears"):
+        raise InputError("pair_case", ref, "either pair_case or inline [gears], not both")
+    for base in (path.parent, CASES_DIR):
+        p = base / ref
+        if p.is_file():
+            src = load_case(p)
+            src.get("kind", str, "pair", choices=("pair",))
+            src.get("title", str, "")
+            return src
+    raise InputError("pair_case", ref, f"a pair case file in {path.parent} or {CASES_DIR}")
+
+
+def build(case: Table, path: Path):
+    """(HexMesh, summary extras) of a mesh case."""
+    from mesher import mesh_gear, mesh_pair
+
+    case.get("title", str, "")
+    gear_name = case.get("gear", str, None)
+    src = _pair_source(case, path)
+    gears = read_gears(src)
+    opts, et = read_mesh_options(case.table("mesh", required=False))
+    if gear_name is not None:
+        if gear_name not in gears:
+            raise InputError("gear", gear_name, "one of " + ", ".join(repr(g) for g in gears))
+        for k in ("driver", "driven", "center_distance_mm", "misalignment", "tca", "position"):
+            if case.has(k):
+                raise InputError(k, case.data[k], "no pair keys in a case that meshes one gear (gear = ...)")
+        mesh = mesh_gear(gears[gear_name], opts)
+        return mesh, {"gear": gear_name}, et
+    pair, driver, driven = read_pair(src, gears)
+    tca_opts = read_tca_options(src.table("tca", required=False))
+    if case.has("position") and isinstance(case.data["position"], int) and not isinstance(case.data["position"], bool):
+        pos = case.get("position", int)  # range-checked against the TCA positions by mesh_pair
+    else:
+        pos = case.get("position", str, "max_te", choices=("max_te", "min_te"))
+    if src is not case:
+        src.done()
+    pm = mesh_pair(pair, pos, opts, tca_options=tca_opts)
+    p = pm.mesh.meta["position"]
+    extra = {"driver": driver, "driven": driven, "position": p, "contact_node_gap_mm": pm.contact_node_gap,
+             "contact_pairs": [list(x) for x in pm.mesh.contact_pairs]}
+    return pm.mesh, extra, et
+
+
+def handle(args) -> int:
+    from mesher import check_conformity, check_quality, write_inp, write_msh, write_vtu
+
+    t0 = time.perf_counter()
+    c0 = time.process_time()
+    path = Path(args.case)
+    case = load_case(path)
+    with staged_output(args.out) as tmp:
+        tmp = Path(tmp)
+        mesh, extra, et = build(case, path)
+        case.done()
+        t_mesh = time.perf_counter() - t0
+        q = check_quality(mesh)
+        conf = check_conformity(mesh)
+        write_vtu(mesh, tmp / "mesh.vtu")
+        names = write_inp(mesh, tmp / "mesh.inp", element_type=et)
+        write_msh(mesh, tmp / "mesh.msh")
+        bodies = {b: {"elements": int(np.sum(mesh.cell_body == i)),
+                      "nodes": int(len(np.unique(mesh.cells[mesh.cell_body == i]))),
+                      "volume_mm3": float(q.volume[mesh.cell_body == i].sum()),
+                      "reference_point_mm": list(mesh.reference_points[b].point),
+                      "axis": list(mesh.reference_points[b].axis),
+                      **mesh.meta["bodies"].get(b, {})} for i, b in enumerate(mesh.bodies)}
+        summary = {
+            "case": str(args.case), "elements": mesh.n_cells, "nodes": mesh.n_points,
+            "min_scaled_jacobian": float(q.min_scaled_jacobian.min()),
+            "min_corner_scaled_jacobian": float(q.min_corner_scaled_jacobian.min()),
+            "max_aspect_ratio": float(q.aspect_ratio.max()),
+            "volume_mm3": float(q.volume.sum()), **conf, **extra, "bodies": bodies,
+            "inp_element_type": et, "inp_set_names": names,
+            "files": ["mesh.vtu", "mesh.inp", "mesh.msh", "summary.json"],
+            "mesh_s": t_mesh, "elapsed_s": time.perf_counter() - t0, "cpu_s": time.process_time() - c0,
+        }
+        (tmp / "summary.json").write_text(json.dumps(summary, indent=2, default=to_json) + "\n")
+    for k in ("elements", "nodes", "min_scaled_jacobian", "max_aspect_ratio", "contact_node_gap_mm", "elapsed_s"):
+        if k in summary:
+            v = summary[k]
+            print(f"  {k:<22}  {v:.6g}" if isinstance(v, float) else f"  {k:<22}  {v}")
+    print(f"results in {args.out}/")
+    return 0

@@ -1,0 +1,273 @@
+"""Sweep a grid of load cases (positions, torques, misalignments, designs) as independent Dask tasks.
+
+``gearfe sweep SWEEP.toml --out DIR [--scheduler ADDRESS]``. The sweep file names a base case and
+the axes of the grid (dotted keys of the base case and their values)::
+
+    task = "tca"                          # what each grid point runs: "tca" (gearfe tca) or "stress"
+    base = "part1_sun_planet.toml"        # relative to the sweep file
+    [[axes]]
+    key = "misalignment.d_gamma_arcmin"
+    values = [-3.0, 0.0, 3.0]
+    [[axes]]
+    key = "gears.planet.plunge.parabola_per_mm"
+    values = [0.001, 0.002]
+
+Designs: an axis with ``key = "base"`` and a list of case files (relative to the sweep file) sweeps
+the base case itself (then no top-level ``base``); the other axes apply to each design. A dotted
+key may create a table the base case lacks (the case reader then checks it like any other key).
+
+Stress sweeps (``task = "stress"``, :mod:`pipelines.stress.sweep`): each point runs
+:func:`pipelines.stress.run.run_stress` and writes ``result.vtu`` and ``summary.json`` in its case
+folder; typical axes are ``torque_nm``, ``phi1_deg``, ``position``, ``misalignment.d_gamma_arcmin``,
+``shaft.d_gamma_arcmin``, ``mesh.refine``. An axis over ``position`` or ``phi1_deg`` replaces the
+base case's choice of position. Positions through a mesh cycle::
+
+    [positions]
+    steps = 12        # 12 positions over one angular pitch of the driving gear, on the TCA grid:
+    start = 0         # position = start + i * steps_per_cycle / steps (steps must divide
+                      # tca.steps_per_cycle); column "positions.step" = i
+    # or: phi1_deg = [-6.0, -5.5, ...]   plain driving-gear angles (column "phi1_deg")
+
+The positions are the innermost axis. A stress sweep over two or more positions also writes
+``DIR/te_loaded.png`` (unloaded TCA TE and loaded TE = TCA TE + FE elastic rotation of the driven
+body, vs φ1) and ``DIR/load_share.png`` (share of the contact force of each modelled tooth pair vs
+φ1), one curve per combination of the other axes.
+
+Every grid point is validated before anything runs (a bad key or value: exit status 2, no files).
+Each point runs in ``DIR/cases/<id>/`` (written under a temporary name and renamed when finished),
+so an interrupted sweep resumes where it stopped and never leaves a half-written case; finished
+points are not recomputed. ``DIR/results.csv`` gathers the axes and the scalar results of all
+points (with ``status``; stress: ``phi1_deg``, ``te_unloaded_arcsec``, ``elastic_rotation_arcsec``,
+``te_loaded_arcsec``, ``tca_second_pair_gap_arcsec``, maximum stresses, contact force, torque
+balance errors, ``dofs``, stage times and ``share.<interface>.member.<m>`` /
+``share.<interface>.teeth.<pair>`` load shares); ``DIR/sweep.json`` records the grid. Runs on a
+local Dask cluster (processes, one thread each) or on the scheduler at ``--scheduler``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import copy
+import csv
+import hashlib
+import io
+import itertools
+import json
+import os
+import shutil
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from tca.errors import GearfeError, InputError
+
+from pipelines.cases.reader import load_case
+from pipelines.cli.outdir import atomic_write_text
+from pipelines.cases.schema import Table
+from pipelines.stress.sweep import POSITION_KEYS, STEP_KEY, apply_position, expand_positions, plot_cycle, stress_scalars
+from pipelines.stress.sweep import run_point_stress, validate_stress
+
+__all__ = ["add_args", "handle", "build_grid", "run_point", "TASKS"]
+
+TASKS = ("tca", "stress")
+
+
+def add_args(p: argparse.ArgumentParser) -> None:
+    p.add_argument("sweep", help="sweep file (TOML)")
+    p.add_argument("--out", required=True, help="output folder (resumable)")
+    p.add_argument("--scheduler", default=None, help="address of an existing Dask scheduler (default: local cluster)")
+    p.add_argument("--workers", type=int, default=None,
+                   help="local cluster size (default: CPU count); 0 runs the points one after the other in this process")
+
+
+def _set(d: dict, dotted: str, value, where: str):
+    keys = dotted.split(".")
+    cur = d
+    for k in keys[:-1]:
+        cur.setdefault(k, {})  # a missing table is created: the case reader checks its keys
+        if not isinstance(cur[k], dict):
+            raise InputError(where, dotted, f"a key of the base case ({k!r} is a value, not a table)")
+        cur = cur[k]
+    cur[keys[-1]] = value
+
+
+def build_grid(sweep_path: str | Path) -> tuple[str, list[dict], list[str]]:
+    """(task, points, axis keys): each point {'id', 'values', 'case'} with the patched base case."""
+    sweep_path = Path(sweep_path)
+    t = load_case(sweep_path)
+    task = t.get("task", str, "tca", choices=TASKS)
+    axes = t.tables("axes")
+    keys, values = [], []
+    for a in axes:
+        k = a.get("key", str)
+        v = a.get("values", list)
+        if not v:
+            raise InputError(f"{a.path}.values", v, "a non-empty list")
+        if k in keys:
+            raise InputError(f"{a.path}.key", k, "a key not already swept by another axis")
+        a.done()
+        keys.append(k)
+        values.append(v)
+    if "base" in keys:
+        if t.has("base"):
+            raise InputError("base", t.data["base"], "no top-level base when an axis sweeps key = 'base'")
+        bases = values[keys.index("base")]
+        if any(not isinstance(b, str) for b in bases):
+            raise InputError("axes.values", bases, "case file names (strings) for key = 'base'")
+    else:
+        bases = [t.get("base", str)]
+    cases = {b: load_case((sweep_path.parent / b).resolve()).data for b in bases}
+    positions = expand_positions(t.table("positions", required=False))
+    if positions is not None:
+        if task != "stress":
+            raise InputError("positions", t.data["positions"], "a [positions] table only with task = 'stress'")
+        if any(k in POSITION_KEYS or k == STEP_KEY for k in keys):
+            raise InputError("positions", t.data["positions"], "either [positions] or an axis over position/phi1_deg")
+        keys.append(positions[0])
+        values.append(positions[1])
+    if not keys:
+        raise InputError("axes", [], "at least one [[axes]] table or a [positions] table")
+    t.done()
+    points = []
+    for combo in itertools.product(*values):
+        named = dict(zip(keys, combo))
+        case = copy.deepcopy(cases[named.get("base", bases[0])])
+        shown = {}
+        for k, v in named.items():
+            if k == "base":
+                shown[k] = v
+            elif task == "stress" and (k in POSITION_KEYS or k == STEP_KEY):
+                shown[k] = apply_position(case, k, v, "axes.key")
+            else:
+                _set(case, k, v, "axes.key")
+                shown[k] = v
+        ident = hashlib.sha1(json.dumps(case, sort_keys=True, default=str).encode()).hexdigest()[:12]
+        points.append({"id": ident, "values": shown, "case": case})
+    return task, points, keys
+
+
+def _validate(task: str, point: dict) -> None:
+    """Parse a grid point fully (readers only, no solve), raising InputError/GeometryError early."""
+    from pipelines.cases.reader import read_gears, read_misalignment, read_tca_options
+
+    tab = Table(copy.deepcopy(point["case"]), "")
+    if task == "tca":
+        read_gears(tab)
+        read_misalignment(tab.table("misalignment", required=False))
+        read_tca_options(tab.table("tca", required=False))
+    elif task == "stress":
+        validate_stress(point["case"])
+
+
+def run_point(task: str, point: dict, out_dir: str) -> dict:
+    """Run one grid point into out_dir/cases/<id> (atomically); returns its row for results.csv."""
+    from pipelines.cli.tca import run_case, to_json
+
+    final = Path(out_dir) / "cases" / point["id"]
+    row = {"id": point["id"], **point["values"]}
+    scalars = stress_scalars if task == "stress" else _scalars
+    if (final / "summary.json").is_file():
+        summary = json.loads((final / "summary.json").read_text())
+        return {**row, **scalars(summary), "status": "ok"}
+    final.parent.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{point['id']}.tmp-", dir=final.parent))
+    try:
+        (tmp / "case.json").write_text(json.dumps(point["case"], indent=2))
+        if task == "stress":
+            summary = run_point_stress(point["case"], tmp)
+        else:
+            summary = run_case(Table(copy.deepcopy(point["case"]), ""), tmp, label=point["id"])
+        (tmp / "summary.json").write_text(json.dumps(summary, indent=2, default=to_json))
+        os.replace(tmp, final)
+        return {**row, **scalars(summary), "status": "ok"}
+    except GearfeError as e:
+        shutil.rmtree(tmp, ignore_errors=True)
+        return {**row, "status": f"error: {e}"}
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+
+
+def _scalars(summary: dict) -> dict:
+    return {k: v for k, v in summary.items() if isinstance(v, (int, float, bool, str)) and k not in ("case",)}
+
+
+def _progress(done: int, total: int, t0: float) -> None:
+    width = 30
+    fill = int(width * done / total)
+    rate = done / max(time.perf_counter() - t0, 1e-9)
+    sys.stderr.write(f"\r[{'#' * fill}{'.' * (width - fill)}] {done}/{total} points  {rate:.2f}/s ")
+    sys.stderr.flush()
+
+
+def _run_dask(task: str, points: list[dict], out: Path, args, t0: float) -> list[dict]:
+    """Run the points as Dask tasks (local cluster or --scheduler); rows in completion order."""
+    from dask.distributed import Client, LocalCluster, as_completed
+
+    cluster = None
+    if args.scheduler:
+        client = Client(args.scheduler)
+    else:
+        n = args.workers or os.cpu_count() or 1
+        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None)
+        client = Client(cluster)
+    rows = []
+    try:
+        futures = [client.submit(run_point, task, p, str(out.resolve()), pure=False) for p in points]
+        _progress(0, len(points), t0)
+        for i, fut in enumerate(as_completed(futures), 1):
+            rows.append(fut.result())
+            _progress(i, len(points), t0)
+        sys.stderr.write("\n")
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    return rows
+
+
+def handle(args) -> int:
+    if args.workers is not None and args.workers < 0:
+        raise InputError("--workers", args.workers, "an integer >= 0 (0: in this process)")
+    task, points, keys = build_grid(args.sweep)
+    for p in points:  # all inputs checked before any work
+        _validate(task, p)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    for stale in (out / "cases").glob(".*.tmp-*"):  # left by a killed run: never a result
+        shutil.rmtree(stale, ignore_errors=True)
+    atomic_write_text(out / "sweep.json", json.dumps(
+        {"task": task, "axes": keys, "points": [{"id": p["id"], **p["values"]} for p in points]}, indent=2))
+    rows = []
+    t0 = time.perf_counter()
+    if args.workers == 0 and not args.scheduler:  # in-process, no Dask (tests, debugging)
+        _progress(0, len(points), t0)
+        for i, p in enumerate(points, 1):
+            rows.append(run_point(task, p, str(out.resolve())))
+            _progress(i, len(points), t0)
+        sys.stderr.write("\n")
+    else:
+        rows = _run_dask(task, points, out, args, t0)
+    order = {p["id"]: i for i, p in enumerate(points)}
+    rows.sort(key=lambda r: order[r["id"]])
+    cols = ["id", *keys]
+    for r in rows:
+        for k in r:
+            if k not in cols and k != "status":
+                cols.append(k)
+    cols.append("status")
+    buf = io.StringIO()
+    w = csv.DictWriter(buf, fieldnames=cols, extrasaction="ignore")
+    w.writeheader()
+    w.writerows(rows)
+    atomic_write_text(out / "results.csv", buf.getvalue())
+    failed = [r for r in rows if r["status"] != "ok"]
+    print(f"{len(rows) - len(failed)}/{len(rows)} points ok; results in {out / 'results.csv'}")
+    pos_key = next((k for k in keys if k in POSITION_KEYS or k == STEP_KEY), None)
+    if task == "stress" and pos_key is not None:
+        for path in plot_cycle(rows, keys, pos_key, out):
+            print(f"plot: {path}")
+    for r in failed:
+        print(f"  {r['id']}: {r['status']}", file=sys.stderr)
+    return 1 if failed else 0

@@ -1,0 +1,283 @@
+"""One load case end to end: TCA → position → mesh → contact FE → images → report (issue 7).
+
+``run_pipeline(case, out, progress)`` runs :func:`pipelines.stress.run.run_stress` (TCA, the position —
+by default the maximum of the transmission error, as the report does, or the case's ``phi1_deg`` —,
+the hexahedral models, the contact solve, ``result.vtu``), then writes into ``out``:
+
+* ``tca_te.png`` — the TE function(s) over the TCA grid with the analysed position marked (for the
+  twin drive: members a and b and Eq. (1.15), their maximum); for a pair also ``tca_paths.png``
+  (paths of contact and ellipses on both surfaces);
+* ``zone_<interface>_<member>.png`` — von Mises stress [MPa] on the loaded flank of the slave body
+  (the planet in Part 1) around each mesh's TCA contact point, the other body hidden, the camera on
+  the side of the hidden body looking along the contact normal (cells in front of the tangent plane
+  at the contact — the neighbouring teeth that would hide the flank — are left out); ``zone_..._pressure.png`` the same
+  with the contact pressure [MPa] (edge contact shows as a ridge on the flank's border);
+* ``overview.png`` — the whole model coloured by von Mises stress (each member's largest von Mises
+  stress on its loaded part, as shown, is added to the summary: ``interfaces.<i>.members.<m>.max_von_mises_mpa``);
+* ``report.md`` — the key numbers, stage times and the images; ``summary.json`` is written by the
+  command (all keys of ``gearfe stress`` plus ``stages`` with the time of every stage [s]).
+
+Colour ranges: every zone image of a run shares one range (0 to the run's largest value on the
+shown flanks) unless ``clim`` fixes it (``gearfe compare`` uses one range for both designs).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from pathlib import Path
+
+import numpy as np
+
+from tca.pair_tca import ARCSEC, PairTCAResult
+
+from pipelines.stress.case import StressCase
+
+from pipelines.stress.run import run_stress
+
+__all__ = ["STAGES", "run_pipeline", "add_images", "zone_images", "zone_limits", "plot_position_te", "write_report", "zone_name"]
+
+STAGES = ("tca", "mesh", "solve", "results", "images", "report")
+EDGES_UP_TO = 6000  # element edges are drawn in zone images of at most this many cells
+
+
+def zone_name(interface: str, member: str) -> str:
+    """File stem of a contact-zone image, e.g. 'zone_sun-planet_a'."""
+    return f"zone_{interface}_{member}"
+
+
+def plot_position_te(tca, phi1: float, path: Path, title: str = "") -> Path:
+    """TE [arcsec] over the TCA grid with the analysed position φ1 [rad] marked."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from pipelines.render.plots import savefig
+
+    fig, ax = plt.subplots(figsize=(8, 4.2))
+    if isinstance(tca, PairTCAResult):
+        ax.plot(np.degrees(tca.phi1), tca.te_arcsec, color="C0", lw=2, label=r"$\Delta\phi_2$ (pair in contact)")
+        at = float(np.interp(phi1, tca.phi1, tca.te_arcsec))
+        ylabel = r"$\Delta\phi_2$ [arcsec]"
+    else:  # TwinTE
+        x = np.degrees(tca.phi1)
+        for k, c in (("a", "C0"), ("b", "C2")):
+            ax.plot(x, tca.members[k].te3 / ARCSEC, color=c, lw=1.2, ls="--", label=f"member {k}")
+        ax.plot(x, tca.te / ARCSEC, color="k", lw=2, label="twin drive, Eq. (1.15)")
+        at = float(np.interp(phi1, tca.phi1, tca.te / ARCSEC))
+        ylabel = r"$\Delta\phi_3$ [arcsec]"
+    ax.plot([math.degrees(phi1)], [at], "o", ms=8, color="C3", zorder=5, label=f"analysed: {math.degrees(phi1):.4f} deg")
+    ax.set_xlabel(r"$\phi_1$ [deg]")
+    ax.set_ylabel(ylabel)
+    ax.set_title(title or "Transmission error and the analysed position")
+    ax.grid(alpha=0.3)
+    ax.legend(loc="best", fontsize=8)
+    return savefig(fig, path)
+
+
+def _zone_radius(m: dict) -> float:
+    """View radius [mm] of a contact zone: the whole loaded flank across the face width, at least the ellipse."""
+    hz = m["hertz_estimate"]
+    return max(0.6 * m["face_width_mm"], 1.5 * hz.get("a_mm", 0.0))
+
+
+def _parts(mesh) -> np.ndarray:
+    """Connected part of every cell (parts of one body share no nodes: Fig. 1.7's members)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    nc, k = mesh.cells.shape
+    a = coo_matrix((np.ones(nc * k), (np.repeat(np.arange(nc), k), mesh.cells.ravel())), shape=(nc, mesh.n_points)).tocsr()
+    _, lab = connected_components(a @ a.T, directed=False)
+    return lab
+
+
+def _view(m: dict) -> np.ndarray:
+    """Unit vector from the contact point toward the camera: the hidden (other) body's side of the contact."""
+    n = np.asarray(m["tca_normal"], float)
+    return n if m["slave_is_driver"] else -n  # the TCA normal points out of the driver's tooth
+
+
+def _zones(summary: dict, mesh, grid) -> list:
+    """(interface, member, summary of the member, sub-grid of its loaded part near the contact, view radius)."""
+    out = []
+    centres = mesh.points[mesh.cells].mean(axis=1)
+    part = _parts(mesh)
+    for itf, d in summary["interfaces"].items():
+        for member, m in d["members"].items():
+            p = np.asarray(m["tca_contact_point_mm"])
+            cells = np.flatnonzero(mesh.cell_body == mesh.bodies.index(m["slave_body"]))
+            own = part[cells[np.argmin(np.linalg.norm(centres[cells] - p, axis=1))]]  # the part carrying the contact
+            cells = cells[part[cells] == own]
+            r = _zone_radius(m)
+            off = centres[cells] - p
+            # behind the tangent plane only: the convex loaded flank stays, the neighbouring teeth that
+            # would hide it from a camera on the contact normal go
+            near = cells[(np.linalg.norm(off, axis=1) < 3 * r) & (off @ _view(m) < 0.0)]
+            out.append((itf, member, m, grid.extract_cells(near), r))
+    return out
+
+
+def _grid(mesh, result):
+    from pipelines.render.images import to_pyvista
+
+    return to_pyvista(mesh, {"von_mises": result.von_mises, "contact_pressure": np.nan_to_num(result.contact_pressure)})
+
+
+def _maxima(zones) -> dict:
+    """Largest von Mises and contact pressure [MPa] over the sub-grids of `zones`."""
+    return {f: max((float(np.nanmax(z[3].point_data[f], initial=0.0)) for z in zones), default=0.0)
+            for f in ("von_mises", "contact_pressure")}
+
+
+def zone_limits(summary: dict, mesh, result) -> dict:
+    """Largest von Mises and contact pressure [MPa] on the flanks shown in the zone images."""
+    return _maxima(_zones(summary, mesh, _grid(mesh, result)))
+
+
+def zone_images(summary: dict, mesh, result, out: Path, clim: dict | None = None, size=(1200, 900)) -> tuple[list, dict]:
+    """Contact-zone images of every interface and member, and the overview (module docstring).
+
+    Returns the file names and the largest von Mises stress [MPa] on each zone's loaded part
+    ({(interface, member): value}).
+
+    ``clim``: fixed colour ranges {field: max [MPa]} ('von_mises', 'contact_pressure'); a field
+    not given gets the largest value over this run's zone images.
+    """
+    from pipelines.render.images import render_contact_zone, render_overview
+
+    grid = _grid(mesh, result)
+    zones = _zones(summary, mesh, grid)
+    lim = {**_maxima(zones), **(clim or {})}
+    names, peaks = [], {}
+    for itf, member, m, sub, r in zones:
+        view = _view(m)
+        share = summary["load_share"][itf]["members"][member]
+        edge = "edge contact" if m.get("edge_contact") else "no edge contact"
+        cap = f"{itf}, member {member} ({m['slave_body']} flank): load share {share:.3f}, {edge}"
+        stem = zone_name(itf, member)
+        vm = peaks[(itf, member)] = float(np.nanmax(sub.point_data["von_mises"], initial=0.0))
+        edges = sub.n_cells <= EDGES_UP_TO
+        look = np.asarray(sub.center) if sub.n_cells else np.asarray(m["tca_contact_point_mm"])  # frame the whole flank
+        render_contact_zone(sub, "von_mises", look, view, out / f"{stem}.png", radius=r,
+                            clim=(0.0, lim["von_mises"] or 1.0), size=size, show_edges=edges, caption=cap + f"\nmax von Mises {vm:.0f} MPa")
+        render_contact_zone(sub, "contact_pressure", look, view, out / f"{stem}_pressure.png",
+                            radius=r, clim=(0.0, lim["contact_pressure"] or 1.0), size=size, title="contact pressure [MPa]", show_edges=edges,
+                            caption=cap + f"\nmax contact pressure {m['max_contact_pressure_mpa']:.0f} MPa")
+        names += [f"{stem}.png", f"{stem}_pressure.png"]
+    render_overview(grid, "von_mises", out / "overview.png", size=size,
+                    caption=f"{summary.get('title') or summary.get('model')}: max von Mises {summary['max_von_mises_mpa']:.0f} MPa")
+    names.append("overview.png")
+    return names, peaks
+
+
+def _fmt(v, nd=4) -> str:
+    if isinstance(v, bool) or v is None:
+        return str(v)
+    if isinstance(v, float):
+        return f"{v:.{nd}g}"
+    return str(v)
+
+
+def write_report(summary: dict, path: Path) -> Path:
+    """report.md: the case, position, key results, load shares, stage times and images."""
+    s = summary
+    pos = s["position"]
+    lines = [f"# {s.get('title') or s['model']}", "",
+             f"Model `{s['model']}`, torque {s['torque_nm']:g} N·m, case `{s.get('case', '')}`.", "",
+             "## Position (TCA)", "",
+             f"- φ1 = {pos['phi1_deg']:.6f} deg"]
+    for k in ("te_arcsec", "te3_arcsec", "leading_member", "member_phase", "kind", "active_pair"):
+        if k in pos:
+            lines.append(f"- {k} = {_fmt(pos[k])}")
+    reg = s.get("tca", {}).get("regulation")
+    if reg:
+        lines.append("- regulation: " + ", ".join(f"{k} = {_fmt(v)}" for k, v in reg.items()))
+    lines += ["", "## Results", "", "| quantity | value |", "|---|---|"]
+    for k in ("max_von_mises_mpa", "max_von_mises_body", "max_contact_pressure_mpa", "contact_force_n",
+              "contact_area_mm2", "max_fillet_stress_mpa", "max_fillet_set", "torque_balance_error",
+              "torque_balance_error_kinematic", "reaction_torque_nm", "expected_reaction_torque_nm", "edge_contact",
+              "fe_edge_contact", "dofs", "elements"):
+        if k in s:
+            lines.append(f"| {k} | {_fmt(s[k])} |")
+    lines += ["", "## Load share and edge contact per mesh", "",
+              "| interface | member | load share | force [N] | max pressure [MPa] | max von Mises on the loaded part [MPa] | "
+              "edge pressure [MPa] | edge contact | TCA contact | Hertz p0 [MPa] |",
+              "|---|---|---|---|---|---|---|---|---|---|"]
+    for itf, d in s["interfaces"].items():
+        for mem, m in d["members"].items():
+            lines.append(f"| {itf} | {mem} | {s['load_share'][itf]['members'][mem]:.4f} | {m['force_n']:.1f} | "
+                         f"{m['max_contact_pressure_mpa']:.1f} | {_fmt(m.get('max_von_mises_mpa'), 5)} | "
+                         f"{m['edge_pressure_mpa']:.1f} | {m['edge_contact']} | "
+                         f"{m['tca_kind']} | {m['hertz_estimate']['p0_mpa']:.0f} |")
+    lines += ["", "## Stage times [s]", "", "| stage | wall [s] |", "|---|---|"]
+    for k, v in s["stages"].items():
+        lines.append(f"| {k} | {v:.2f} |")
+    lines += ["", f"Stress recovery: {s.get('stress_recovery', '')}.", f"Edge contact rule: {s.get('edge_contact_rule', '')}.",
+              "", "## Images", ""]
+    for f in s.get("images", []) + s.get("plots", []):
+        lines.append(f"![{f}]({f})")
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def _say(progress):
+    n = len(STAGES)
+
+    def say(msg: str) -> None:
+        if progress is not None:
+            stage = msg.split(":", 1)[0]
+            i = STAGES.index(stage) + 1 if stage in STAGES else 0
+            progress(f"[{i}/{n}] {msg}" if i else msg)
+    return say
+
+
+def add_images(summary: dict, artefacts: dict, out: Path, clim: dict | None = None, progress=None) -> dict:
+    """Render the images of a computed run into ``out`` and rewrite its report; the updated summary."""
+    say = _say(progress)
+    t1 = time.perf_counter()
+    say("images: rendering off screen (pyvista)")
+    names, peaks = zone_images(summary, artefacts["mesh"], artefacts["result"], Path(out), clim)
+    dt = time.perf_counter() - t1
+    say(f"images: {len(names)} images in {dt:.1f} s")
+    interfaces = {itf: {**d, "members": {k: {**m, "max_von_mises_mpa": peaks[(itf, k)]} for k, m in d["members"].items()}}
+                  for itf, d in summary["interfaces"].items()}
+    s = {**summary, "interfaces": interfaces, "images": names, "files": [*summary["files"], *names]}
+    s["stages"] = {**summary["stages"], "images": summary["stages"].get("images", 0.0) + dt}
+    return _report(s, Path(out), say)
+
+
+def _report(s: dict, out: Path, say) -> dict:
+    t = time.perf_counter()
+    write_report(s, out / "report.md")
+    s["stages"]["report"] = time.perf_counter() - t
+    s["total_s"] = sum(s["stages"].values())
+    say("report: report.md written")
+    return s
+
+
+def run_pipeline(case: StressCase, out: Path, progress=None, clim: dict | None = None, images: bool = True,
+                 artefacts: dict | None = None) -> dict:
+    """Run a load case into ``out`` (module docstring); returns the summary (JSON-ready).
+
+    ``images=False`` skips the rendering (``add_images`` does it later, e.g. with a colour range
+    common to several runs); ``artefacts`` receives the TCA result, scene, mesh and FE result.
+    """
+    out = Path(out)
+    say = _say(progress)
+    art = artefacts if artefacts is not None else {}
+    s = run_stress(case, out, progress=say, artefacts=art)
+    stages = {k: s[f"{k}_s"] for k in ("tca", "mesh", "solve", "results")}
+    t1 = time.perf_counter()
+    plots = [plot_position_te(art["tca"], math.radians(s["position"]["phi1_deg"]), out / "tca_te.png").name]
+    if isinstance(art["tca"], PairTCAResult):
+        from pipelines.render.plots import plot_contact_paths
+
+        g = case.pair
+        plots.append(plot_contact_paths(art["tca"], out / "tca_paths.png", (g.gear1.name, g.gear2.name)).name)
+    stages["images"] = time.perf_counter() - t1
+    s = {**s, "images": [], "plots": plots, "files": ["result.vtu", "report.md", "summary.json", *plots], "stages": stages}
+    if images:
+        return add_images(s, art, out, clim, progress)
+    return _report(s, out, say)

@@ -1,0 +1,160 @@
+"""Mesh and FE model of a stress scene (Steps 4–6, Fig. 1.7) and its contact solve.
+
+Each part of the scene is meshed by :func:`mesher.mesh_gear` around its loaded tooth (graded at the
+TCA contact point with the scene's sizes and zone) and moved into S_f; parts of one body are joined
+(:func:`mesher.join_parts`: the twin planet's four parts become one body whose rims are tied to one
+reference node). Supports as Fig. 1.7: the fixed body's rims held, the rigid bodies' rims tied to
+their reference nodes with only the rotation about the axis free, the torque on the driven body.
+
+Contacts: for every interface and every modelled tooth pair (equal offsets from the loaded pair),
+a :class:`fem.ContactPair` from the slave flank (the planet, or the driven gear of a pair) to the
+master flank, seeded at the TCA point on the loaded pair, grouped per interface and member.
+
+The solver keeps as contact candidates the slave nodes whose initial gap is below
+``search_gap``; it checks afterwards that no other node penetrates, and when one does the solve
+is repeated with the search gap doubled (up to ``max_search_gap``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from fem import Body, ContactOptions, ContactPair, FEModel, Fixed, Material, Rigid, SolverOptions, solve
+from fem.result import FEResult
+from mesher import MeshOptions, join_parts, mesh_gear, merge_meshes
+from mesher.hexmesh import HexMesh
+from tca.errors import ConvergenceError, InputError
+
+from pipelines.stress.scene import Interface, Scene
+
+__all__ = ["FESettings", "mesh_scene", "fe_model", "solve_scene", "pair_name"]
+
+ELEMENTS = {"C3D8I": "hex8i", "C3D8": "hex8"}
+
+
+@dataclass(frozen=True)
+class FESettings:
+    """Material, element, solver and contact settings of a stress case."""
+
+    E: float = 2.068e5  # [MPa] (Numerical Example 1.3)
+    nu: float = 0.29
+    element: str = "C3D8I"
+    solver: str = "auto"
+    penalty_factor: float = 100.0
+    max_penetration: float = 1e-4  # [mm]
+    quadrature: int = 2
+    penalty_check_tol: float = 0.01  # peak-pressure change allowed when the penalty doubles
+    search_gap: float = 0.03  # [mm]
+    max_search_gap: float = 0.5  # [mm]
+
+    def __post_init__(self):
+        Material(self.E, self.nu)  # validates
+        if self.element not in ELEMENTS:
+            raise InputError("fe.element", self.element, "one of " + ", ".join(repr(e) for e in ELEMENTS))
+        SolverOptions(solver=self.solver)
+        self.contact_options()
+        if not (0 < self.search_gap <= self.max_search_gap <= 5.0):
+            raise InputError("fe.search_gap_mm", self.search_gap, f"in (0, max_search_gap_mm = {self.max_search_gap:g}] mm, "
+                             "max_search_gap_mm <= 5")
+
+    @property
+    def material(self) -> Material:
+        return Material(self.E, self.nu)
+
+    def contact_options(self) -> ContactOptions:
+        return ContactOptions(penalty_factor=self.penalty_factor, max_penetration=self.max_penetration,
+                              quadrature=self.quadrature, penalty_check_tol=self.penalty_check_tol)
+
+
+def mesh_scene(scene: Scene) -> HexMesh:
+    """All parts meshed, placed and joined into the scene's bodies (one mesh)."""
+    bodies: dict[str, list] = {}
+    for p in scene.parts:
+        s = p.sizes
+        opts = MeshOptions(teeth=s["teeth"], rim_depth=s["rim"], coarse_size=s["coarse"], contact_size=s["contact"],
+                           fillet_size=s["fillet"], growth=s["growth"], axial_contact_size=s["axial"],
+                           neighbour_size=s["neighbour"])
+        m = mesh_gear(p.gear, opts, centre=p.centre, focus=p.focus).transformed(p.R, p.t)
+        bodies.setdefault(p.body, []).append((p, m))
+    refs = {b: r for b, (r, _) in scene.rigid.items()}
+    meshes = []
+    for body, items in bodies.items():
+        if len(items) == 1 and not items[0][0].label:
+            p, m = items[0]
+            if m.bodies[0] != body:
+                raise InputError("parts", (m.bodies[0], body), "a one-part body named after its gear")
+            if body in refs:
+                m = HexMesh(m.points, m.cells, m.cell_body, m.bodies, m.point_sets, m.face_sets, {body: refs[body]},
+                            (), m.meta)
+            meshes.append(m)
+        else:
+            from mesher import ReferencePoint
+
+            ref = refs.get(body, ReferencePoint((0.0, 0.0, 0.0), (0.0, 0.0, 1.0)))
+            meshes.append(join_parts([(p.label, m) for p, m in items], body, ref))
+    pairs = []
+    for itf in scene.interfaces:
+        for _, j1, j2 in itf.tooth_pairs():
+            pairs.append((itf.driver.set(f"tooth{j1}/flank_{_side(itf.side1)}"), itf.driven.set(f"tooth{j2}/flank_{_side(itf.side2)}")))
+    meta = {"bodies": {k: v for m in meshes for k, v in m.meta.get("bodies", {}).items()}, "model": scene.model}
+    return merge_meshes(meshes, contact_pairs=pairs, meta=meta)
+
+
+def _side(s: int) -> str:
+    return "pos" if s > 0 else "neg"
+
+
+def pair_name(itf: Interface, j1: int, j2: int) -> str:
+    """Contact pair name: '<interface>/<member>/<driver><j1>-<driven><j2>' (own tooth indices)."""
+    return f"{itf.name}/{itf.member}/{itf.driver.gear.name}{j1}-{itf.driven.gear.name}{j2}"
+
+
+def fe_model(scene: Scene, fe: FESettings, search_gap: float | None = None) -> FEModel:
+    """Bodies with the supports of Fig. 1.7, contact pairs per tooth pair, fillet sets of all teeth."""
+    mat = fe.material
+    gap = fe.search_gap if search_gap is None else search_gap
+    bodies = []
+    names = []
+    for p in scene.parts:
+        if p.body not in names:
+            names.append(p.body)
+    for b in names:
+        if b == scene.fixed:
+            bodies.append(Body(b, (Fixed(f"{b}/rim"),), mat))
+        else:
+            ref, torque = scene.rigid[b]
+            bodies.append(Body(b, (Rigid(f"{b}/rim", b, free=("rz",), torque=torque),), mat))
+    contacts = []
+    for itf in scene.interfaces:
+        for q, j1, j2 in itf.tooth_pairs():
+            s1 = itf.driver.set(f"tooth{j1}/flank_{_side(itf.side1)}")
+            s2 = itf.driven.set(f"tooth{j2}/flank_{_side(itf.side2)}")
+            slave, master = (s2, s1) if itf.slave == "driven" else (s1, s2)
+            cp = tuple(float(x) for x in itf.point) if q == 0 else None
+            contacts.append(ContactPair(slave, master, name=pair_name(itf, j1, j2), group=f"{itf.name}/{itf.member}",
+                                        search_gap=gap, contact_point=cp))
+    fillets = []
+    for p in scene.parts:
+        for j in p.teeth:
+            fillets += [p.set(f"tooth{j}/fillet_pos"), p.set(f"tooth{j}/fillet_neg")]
+    return FEModel(tuple(bodies), tuple(contacts), fe.contact_options(),
+                   SolverOptions(solver=fe.solver, element=ELEMENTS[fe.element]), tuple(fillets))
+
+
+def solve_scene(scene: Scene, mesh: HexMesh, fe: FESettings, progress=None) -> tuple[FEResult, FEModel, list]:
+    """Solve, doubling the search gap while nodes outside the candidate set penetrate; (result, model, attempts)."""
+    gap = fe.search_gap
+    attempts = []
+    while True:
+        model = fe_model(scene, fe, gap)
+        try:
+            r = solve(mesh, model)
+            attempts.append({"search_gap_mm": gap, "ok": True, "total_s": r.info.timings["total_s"]})
+            return r, model, attempts
+        except ConvergenceError as exc:
+            if "outside the candidate set" not in str(exc.where) or 2 * gap > fe.max_search_gap:
+                raise
+            attempts.append({"search_gap_mm": gap, "ok": False, "why": str(exc)})
+            gap *= 2
+            if progress is not None:
+                progress(f"solve: a node outside the contact candidates penetrates; search gap raised to {gap:g} mm")

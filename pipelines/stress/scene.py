@@ -1,0 +1,385 @@
+r"""Gear-level FE scenes at a TCA position: which teeth are meshed, where, and how finely (section 1.6).
+
+A *scene* lists the parts to mesh — ``teeth`` teeth of one gear member centred on its loaded
+tooth, placed in :math:`S_f` — the meshing interfaces between them and the supports of the bodies
+(Fig. 1.7). It is built from tooth contact analysis only; :func:`pipelines.stress.run.run_stress`
+meshes and solves it.
+
+Contact at an angle (:func:`mesh_contact`). A pair TCA (:func:`tca.pair_tca.run_pair_tca`) gives the
+reference pair of teeth on a grid of :math:`\phi_1`; at an angle :math:`\phi` the pair in contact
+is the branch :math:`k` with the largest :math:`\Delta\phi_2` (:class:`tca.planetary_mesh.MeshTE`), i.e.
+tooth :math:`-k \bmod N` of each gear, and :math:`\phi_2 = (N_1/N_2)\phi + \Delta\phi_2`. On the grid
+the TCA solution is used as it is (the two contact nodes coincide to the TCA residual); between
+grid points the reference solution is interpolated linearly (an initial gap of the order of
+:math:`h^2 \max|\Delta\phi_2''|\,r/8`, a few 1e-5 mm, far below the elastic approach).
+
+Models.
+
+* ``pair``: driver (gear 1) fixed on its rim, driven gear rigid on its rim with only the rotation
+  about its axis free and the torque :math:`-T` (against its sense of rotation, so that the loaded
+  flanks close); the driver's reaction torque must be :math:`T N_1/N_2`.
+* ``twin`` (Part 1, Numerical Example 1.3, Figs. 1.7–1.9): shaft 1 of the planetary train with the
+  carrier at rest. Each member *k* = a, b is a single subgear drive (:func:`tca.planetary_mesh.subgear_pairs`,
+  pair frames 1 and 2 mapped to :math:`S_f` by :math:`x_f = A_1^T(x + z_k e_z)` and
+  :math:`x_f = A_2^T x + c_k`): sun member at :math:`\phi_1`; planet members either each at its own
+  :math:`\phi_{2k}` from its sun mesh (``phase = 'assembled'``: members turned on the shaft in
+  assembly, section 1.3 (2a), both touch the sun — Step 3 of section 1.4) or both at
+  :math:`\max_k\phi_{2k}` (``'nominal'``: a one-piece planet as manufactured, the member that is
+  behind keeps a backlash at the sun); ring at the angle of the member that leads,
+  :math:`\max_k \Delta\phi_{3k}` (Eq. 1.15): the other member has a backlash at the ring. Bodies: the sun
+  (members a, b, rims fixed), the twin planet (four parts — a and b, each on the sun side and on the
+  ring side — tied to one reference node on the shaft axis, only the rotation free) and the ring
+  (members a, b, rigid, rotation free, torque :math:`-T` about its axis). The sun's reaction torque
+  must be :math:`T N_1/N_3`.
+
+Element sizes (:func:`contact_sizes`). From the relative curvature of the two surfaces at the
+contact point (:func:`tca.ellipse.contact_ellipse`, :math:`K_2-K_1` with eigenvalues
+:math:`\lambda_1 \le \lambda_2`, so :math:`A=\lambda_1/2`, :math:`B=\lambda_2/2`) and the normal load
+:math:`P = T_{driven}/|((x-o_2)\times n)\cdot a_2|` (the whole torque on one contact), Hertz's
+elliptical contact (Johnson, Contact Mechanics, eqs. 4.39–4.40; :math:`1/E^* = 2(1-\nu^2)/E`)
+
+.. math::
+    \frac{B}{A} = \frac{(a/b)^2 E(e) - K(e)}{K(e) - E(e)},\qquad
+    a^3 = \frac{3P\,(K(e)-E(e))}{2\pi A E^* e^2},\qquad b = a\sqrt{1-e^2},\qquad p_0=\frac{3P}{2\pi ab},
+
+(line contact, :math:`\lambda_1 \approx 0`: :math:`b=\sqrt{4P'R/(\pi E^*)}`, :math:`R=1/\lambda_2`,
+:math:`P'=P/B_w`, :math:`a = B_w/2`) sizes the loaded flanks: profile size :math:`b/3`, axial size
+:math:`\min(a/6,\ b/(3|\sin\theta|))` (θ the major axis from the gear axis), kept over a zone of
+half-lengths 1.2 × the ellipse's extent before growing (:class:`mesher.Focus` extents); all sizes
+are divided by ``refine``. Edge and corner contacts (bounded surfaces) keep the profile size and
+refine the axial levels toward the edge (size 2 × profile size, no zone).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from mesher import Focus, ReferencePoint
+from mesher.body import model_teeth
+from tca.contact import PlacedFlank
+from tca.ellipse import contact_ellipse
+from tca.errors import GeometryError, InputError
+from tca.gear import Gear
+from tca.pair import GearPair
+from tca.pair_tca import ContactKind, PairTCAResult
+from tca.planetary import PlanetaryTrain, ShaftErrors
+from tca.planetary_mesh import MeshTE, member_pose, subgear_pairs
+from tca.transforms import rot_x, rot_z
+
+from pipelines.stress.sizing import SizeRules, contact_sizes, hertz_contact
+
+__all__ = ["MeshContact", "mesh_contact", "Part", "Interface",
+           "Scene", "pair_scene", "twin_scene", "PHASES"]
+
+_SIDE = {1: "pos", -1: "neg"}
+
+
+# ---------------------------------------------------------------------------------------------- contact at an angle
+@dataclass(frozen=True, eq=False)
+class MeshContact:
+    """Contact of a meshing pair at an angle of its driving gear, in the pair frame."""
+
+    k: int  # pair in contact: tooth -k mod N of each gear
+    phi1: float  # [rad]
+    phi2: float  # [rad]
+    te: float  # Δφ2 [rad]
+    params: tuple  # (u1, v1, u2, v2) [mm] on the reference teeth
+    kind: int  # ContactKind
+    point: np.ndarray  # contact point [mm]
+    normal: np.ndarray  # unit normal out of gear 1's tooth
+    curvature: tuple  # (λ1, λ2) eigenvalues of K2 - K1 [1/mm]
+    angle: float  # major axis from the projected gear-1 axis [rad]
+    exact: bool  # on the TCA grid
+    slope: float = 0.0  # dΔφ2/dφ1 of the pair in contact [rad/rad]
+    arms: tuple = (0.0, 0.0)  # moment arms ((x - o_i) x n) . a_i of the normal about both axes [mm]
+    next_gap: float = math.inf  # [mm] TCA separation of the next pair of teeth, (Δφ2 - Δφ2 of the next branch) |arm 2|
+    slopes: dict = field(default_factory=dict)  # offset q -> dΔφ2/dφ1 of the pair q teeth on (branch k - q)
+
+    @property
+    def ratio(self) -> float:
+        """Instantaneous ratio dφ2/dφ1 = N1/N2 + dΔφ2/dφ1 of the pair in contact."""
+        return self.arms[0] / self.arms[1] if self.arms[1] else float("nan")
+
+    def ratio_of(self, q: int) -> float:
+        """Instantaneous ratio of the pair of teeth at offset q from the pair in contact (nan: not on its branch)."""
+        return self.ratio + self.slopes.get(q, float("nan")) - self.slope if q else self.ratio
+
+
+def mesh_contact(result: PairTCAResult, phi: float) -> MeshContact:
+    """The contact of a pair TCA's drive at driving-gear angle ``phi`` [rad] (module docstring)."""
+    pair = result.pair
+    mte = MeshTE.from_result(result)
+    val, ks = mte.branches(np.array([phi], float))
+    q = int(np.argmax(val[0]))
+    te = float(val[0, q])
+    if not math.isfinite(te):
+        raise GeometryError(f"{pair.gear1.name}-{pair.gear2.name}", "no contact",
+                            f"no pair of teeth is in contact at phi = {math.degrees(phi):.6f} deg")
+    k = int(ks[q])
+    others = np.delete(val[0], q)
+    te_next = float(others[np.isfinite(others)].max(initial=-math.inf))
+    ref = result.reference
+    n = len(ref.phi1)
+    h = (ref.phi1[-1] - ref.phi1[0]) / (n - 1)
+    p1, p2 = 2 * math.pi / pair.gear1.teeth, 2 * math.pi / pair.gear2.teeth
+    t = (phi - k * p1 - ref.phi1[0]) / h
+    tr = round(t)
+    exact = bool(abs(t - tr) < 1e-7)
+    ok = (ref.kind != ContactKind.NONE) & np.all(np.isfinite(ref.x), axis=1)
+    if exact:
+        i0, w = int(tr), 0.0
+    else:
+        i0 = int(math.floor(t))
+        w = t - i0
+    i1 = min(i0 + 1, n - 1)
+    if not (0 <= i0 < n) or not ok[i0]:
+        raise GeometryError(f"{pair.gear1.name}-{pair.gear2.name}", "no contact",
+                            f"the reference pair has no contact at phi = {math.degrees(phi - k * p1):.6f} deg")
+    if w > 0 and ok[i1]:
+        x = (1 - w) * ref.x[i0] + w * ref.x[i1]
+        kind = int(ref.kind[i0] if w < 0.5 else ref.kind[i1])
+    else:
+        x, kind = ref.x[i0].copy(), int(ref.kind[i0])
+    phi2 = pair.ratio * phi + te
+    m1, m2 = pair.mounts()
+    f1, f2 = PlacedFlank(pair.gear1, pair.side1, m1), PlacedFlank(pair.gear2, pair.side2, m2)
+    w1, _, _ = f1.world(np.array([x[0]]), np.array([x[1]]), np.array([phi - k * p1]))
+    w2, _, _ = f2.world(np.array([x[2]]), np.array([x[3]]), np.array([phi2 - k * p2]))
+    _, _, ang, lam = contact_ellipse(w1, w2, 1.0, m1.axis[None, :])
+    x0, n0 = w1.r[0].copy(), w1.n[0].copy()
+    arms = tuple(float(np.cross(x0 - m.origin, n0) @ m.axis) for m in (m1, m2))
+    return MeshContact(k, float(phi), float(phi2), te, tuple(float(v) for v in x[:4]), kind, x0, n0,
+                       (float(lam[0, 0]), float(lam[0, 1])), float(ang[0]), exact, _slope(mte, k, phi), arms,
+                       (te - te_next) * abs(arms[1]), {q: _slope(mte, k - q, phi) for q in range(-4, 5)})
+
+
+def _slope(mte: MeshTE, k: int, phi: float) -> float:
+    """dΔφ2/dφ1 [rad/rad] of branch k at phi: parabola through the three nearest grid values."""
+    y = mte.branch
+    t = (phi - k * mte.pitch - mte.phi0) / mte.h
+    if not -0.5 <= t <= len(y) - 0.5:
+        return float("nan")  # the branch is not defined at phi
+    i = int(round(t))
+    ok = lambda j: 0 <= j < len(y) and np.isfinite(y[j])  # noqa: E731
+    if ok(i - 1) and ok(i) and ok(i + 1):
+        d = 0.5 * (y[i + 1] - y[i - 1]) + (t - i) * (y[i + 1] - 2 * y[i] + y[i - 1])
+    elif ok(i) and ok(i + 1):
+        d = y[i + 1] - y[i]
+    elif ok(i - 1) and ok(i):
+        d = y[i] - y[i - 1]
+    else:
+        return float("nan")
+    return float(d / mte.h)
+
+
+
+# ---------------------------------------------------------------------------------------------- scene
+@dataclass(frozen=True, eq=False)
+class Part:
+    """A gear member's teeth around its loaded tooth, placed in S_f by x_f = R x + t (gear frame x)."""
+
+    body: str
+    label: str  # part label within its body ("" for a one-part body)
+    gear: Gear
+    centre: int  # loaded tooth (the gear's own index)
+    focus: Focus
+    sizes: dict
+    R: np.ndarray
+    t: np.ndarray
+
+    def set(self, name: str) -> str:
+        """Full name of one of the part's sets, e.g. 'tooth3/flank_pos'."""
+        return f"{self.body}/{self.label}/{name}" if self.label else f"{self.body}/{name}"
+
+    @property
+    def teeth(self) -> list[int]:
+        return model_teeth(self.gear, self.sizes["teeth"], self.centre)
+
+
+@dataclass(frozen=True, eq=False)
+class Interface:
+    """A meshing pair of members: driver flank side1 of `driver` against side2 of `driven`."""
+
+    name: str  # e.g. 'sun-planet'
+    member: str  # 'a', 'b'
+    driver: Part
+    driven: Part
+    side1: int
+    side2: int
+    contact: MeshContact
+    point: np.ndarray  # TCA contact point in S_f [mm]
+    normal: np.ndarray  # unit normal out of the driver's tooth in S_f
+    hertz: dict
+    slave: str  # 'driver' or 'driven'
+
+    def tooth_pairs(self) -> list[tuple[int, int, int]]:
+        """(offset q, driver tooth, driven tooth): equal offsets from the loaded pair meet."""
+        t1, t2 = self.driver.teeth, self.driven.teeth
+        c1, c2 = t1.index(self.driver.centre), t2.index(self.driven.centre)
+        return [(q - c1, t1[q], t2[q - c1 + c2]) for q in range(len(t1)) if 0 <= q - c1 + c2 < len(t2)]
+
+
+@dataclass(frozen=True, eq=False)
+class Scene:
+    """Everything needed to mesh and solve one position (see module docstring)."""
+
+    model: str
+    parts: tuple
+    interfaces: tuple
+    fixed: str  # body held on its rims
+    rigid: dict  # body -> (ReferencePoint, torque [N mm] about its axis)
+    reaction: tuple  # (body, point, axis, expected support torque [N mm])
+    ratio: float  # expected reaction torque / applied torque
+    info: dict = field(default_factory=dict)  # position, TE, regulation (JSON-ready)
+
+
+def _affine(R, t, Rm, tm):
+    """Compose x -> R (Rm x + tm) + t."""
+    return R @ Rm, R @ tm + t
+
+
+def _part(body, label, gear, contact_k, params, side, phi, mount, frame, sizes, teeth):
+    u, v = params
+    focus = Focus(side, u, v, sizes["extent_u"], sizes["extent_z"])
+    Rm, _ = mount.rotation(phi)
+    R, t = _affine(frame[0], frame[1], Rm, mount.origin)
+    return Part(body, label, gear, (-contact_k) % gear.teeth, focus, {**sizes, "teeth": teeth}, R, t)
+
+
+def _load(pair: GearPair, c: MeshContact, torque: float) -> float:
+    """Normal load [N] transmitting `torque` [N mm] to the driven gear through the contact point."""
+    _, m2 = pair.mounts()
+    arm = abs(float(np.cross(c.point - m2.origin, c.normal) @ m2.axis))
+    return abs(torque) / arm
+
+
+def _interface(name, member, pair, c, torque, rules, E, nu, frame, bodies, labels, slave):
+    """Driver and driven parts of one mesh at its contact, with Hertz-based sizes."""
+    hz = hertz_contact(c.curvature, _load(pair, c, torque), E, nu, min(pair.gear1.face_width, pair.gear2.face_width))
+    g1, g2 = pair.gear1, pair.gear2
+    m1, m2 = pair.mounts()
+    s1 = contact_sizes(rules, g1, hz, c.angle, c.kind)
+    s2 = contact_sizes(rules, g2, hz, c.angle, c.kind)
+    # both flanks get the finer of the two size sets (master and slave equally fine at the contact)
+    for key in ("contact", "axial"):
+        s1[key] = s2[key] = min(s1[key], s2[key])
+    u1, v1, u2, v2 = c.params
+    d = _part(bodies[0], labels[0], g1, c.k, (u1, v1), pair.side1, c.phi1, m1, frame, s1, rules.teeth)
+    n = _part(bodies[1], labels[1], g2, c.k, (u2, v2), pair.side2, c.phi2, m2, frame, s2, rules.teeth)
+    point = frame[0] @ c.point + frame[1]
+    normal = frame[0] @ c.normal
+    return Interface(name, member, d, n, pair.side1, pair.side2, c, point, normal, hz, slave)
+
+
+def _kind_name(k: int) -> str:
+    return ContactKind.names.get(int(k), str(k))
+
+
+def pair_scene(pair: GearPair, result: PairTCAResult, phi1: float, torque: float, rules: SizeRules,
+               E: float, nu: float) -> Scene:
+    """Driver fixed, driven gear rigid (rotation free, torque -T about its axis) at driver angle phi1 [rad]."""
+    c = mesh_contact(result, phi1)
+    g1, g2 = pair.gear1, pair.gear2
+    frame = (np.eye(3), np.zeros(3))
+    itf = _interface(f"{g1.name}-{g2.name}", "a", pair, c, torque, rules, E, nu, frame, (g1.name, g2.name), ("", ""),
+                     "driven")
+    m1, m2 = pair.mounts()
+    ratio = g1.teeth / g2.teeth
+    info = {"phi1_deg": math.degrees(phi1), "phi2_deg": math.degrees(c.phi2), "te_arcsec": c.te / _ARCSEC,
+            "active_pair": c.k, "kind": _kind_name(c.kind), "on_tca_grid": c.exact,
+            "instantaneous_ratio": c.ratio, "te_slope": c.slope, "next_pair_gap_um": c.next_gap * 1e3,
+            "loaded_teeth": {g1.name: itf.driver.centre, g2.name: itf.driven.centre}}
+    return Scene("pair", (itf.driver, itf.driven), (itf,), g1.name,
+                 {g2.name: (ReferencePoint(tuple(m2.origin), tuple(m2.axis)), -abs(torque))},
+                 (g1.name, tuple(m1.origin), tuple(m1.axis), abs(torque) * ratio), ratio, info)
+
+
+_ARCSEC = math.pi / (180 * 3600)
+
+
+PHASES = ("assembled", "nominal")
+
+
+def twin_scene(train: PlanetaryTrain, subs: dict, errors: ShaftErrors, dz: tuple, phi1: float, torque: float,
+               rules: SizeRules, E: float, nu: float, phase: str = "assembled") -> Scene:
+    """Twin subgear drive of shaft 1 at sun angle phi1 [rad]: sun fixed, twin planet and ring rigid (module docstring).
+
+    ``subs``: member -> :class:`tca.planetary_mesh.SubgearTE` of shaft 1 (its meshes are used).
+    ``phase``: 'assembled' — each member turned on the shaft so that it touches the sun at phi1
+    (members regulated in assembly, section 1.3 (2a); the four-point assumption of Step 3);
+    'nominal' — the members at one angle as manufactured (a one-piece conventional planet): the
+    member whose sun mesh leads turns the planet, the other keeps a backlash at the sun too.
+    """
+    if phase not in PHASES:
+        raise InputError("regulation.member_phase", phase, "one of " + ", ".join(repr(p) for p in PHASES))
+    i = 0
+    th = train.carrier_angle(i)
+    N1, N2, N3 = train.sun.teeth, train.planet.teeth, train.ring.teeth
+    E_c = train.center_distance
+    A1 = rot_z(-th)
+    A2 = rot_x(math.pi) @ rot_z(-th)
+    zm = train.member_offset
+    ph1 = phi1 - th
+    pairs, c12s = {}, {}
+    for k in ("a", "b"):
+        pairs[k] = subgear_pairs(train, i, k, errors, dz[0 if k == "a" else 1])
+        c12s[k] = mesh_contact(subs[k].mesh12.result, ph1)
+    if phase == "nominal":  # one planet angle: the sun pushes the member that is ahead
+        phi2 = max(c.phi2 for c in c12s.values())
+        c12s = {k: replace(c, phi2=phi2) for k, c in c12s.items()}
+    per = {}
+    for k in ("a", "b"):
+        c12 = c12s[k]
+        ph2p = c12.phi2 + math.pi + math.pi / N2
+        c23 = mesh_contact(subs[k].mesh23.result, ph2p)
+        # ring TE through this member (tca.planetary_mesh.compose_te), shaft 1
+        te3 = c23.phi2 - th + math.pi / N3 - (N1 / N3) * phi1 - math.pi * (N2 + 2) / N3
+        te3 = (te3 + math.pi / N3) % (2 * math.pi / N3) - math.pi / N3
+        per[k] = (c12, c23, te3)
+    lead = max(per, key=lambda k: per[k][2])
+    phi3_lead = per[lead][1].phi2
+    parts, itfs = [], []
+    T_planet = abs(torque) * N2 / N3  # torque through the sun mesh if one member carried all
+    members = {}
+    r2, r3 = train.planet.r_p, train.ring.r_p
+    for k in ("a", "b"):
+        p1, p2 = pairs[k]
+        c12, c23, te3 = per[k]
+        own12 = mesh_contact(subs[k].mesh12.result, ph1)
+        zk = train.member_sign(k) * zm
+        F1 = (A1.T, A1.T @ np.array([0.0, 0.0, zk]))
+        c_nom = np.array([E_c * math.cos(th), E_c * math.sin(th), zk])
+        F2 = (A2.T, c_nom)
+        s_itf = _interface("sun-planet", k, p1, c12, T_planet, rules, E, nu, F1, ("sun", "planet"), (k, f"{k}_sun"), "driven")
+        # the ring turns with the member that leads: the other member keeps its backlash at the ring
+        r_itf = _interface("planet-ring", k, p2, replace(c23, phi2=phi3_lead), abs(torque), rules, E, nu, F2,
+                           ("planet", "ring"), (f"{k}_ring", k), "driver")
+        itfs += [s_itf, r_itf]
+        parts += [s_itf.driver, s_itf.driven, r_itf.driver, r_itf.driven]
+        members[k] = {"te3_arcsec": te3 / _ARCSEC, "te12_arcsec": own12.te / _ARCSEC, "te23_arcsec": c23.te / _ARCSEC,
+                      "sun_backlash_um": (c12.phi2 - own12.phi2) * r2 * 1e3,
+                      "ring_backlash_um": (phi3_lead - c23.phi2) * r3 * 1e3,
+                      "dz_mm": dz[0 if k == "a" else 1], "phi2_deg": math.degrees(c12.phi2),
+                      "sun_mesh": {"kind": _kind_name(own12.kind), "active_pair": own12.k, "on_tca_grid": own12.exact,
+                                   "instantaneous_ratio": own12.ratio, "te_slope": own12.slope,
+                                   "next_pair_gap_um": own12.next_gap * 1e3},
+                      "ring_mesh": {"kind": _kind_name(c23.kind), "active_pair": c23.k, "on_tca_grid": c23.exact,
+                                    "instantaneous_ratio": c23.ratio, "te_slope": c23.slope,
+                                    "next_pair_gap_um": c23.next_gap * 1e3},
+                      "loaded_teeth": {"sun": s_itf.driver.centre, "planet_sun_side": s_itf.driven.centre,
+                                       "planet_ring_side": r_itf.driver.centre, "ring": r_itf.driven.centre}}
+    # the twin planet: reference node on the shaft axis, midway between the members' nominal planes
+    oa, _ = member_pose(train, i, "a", errors, 0.0)
+    ob, R0 = member_pose(train, i, "b", errors, 0.0)
+    planet_ref = ReferencePoint(tuple(0.5 * (oa + ob)), tuple(R0[:, 2]))
+    ring_ref = ReferencePoint((0.0, 0.0, 0.0), (0.0, 0.0, -1.0))  # the ring turns positively about -z_f
+    ratio = N1 / N3
+    info = {"phi1_deg": math.degrees(phi1), "te3_arcsec": per[lead][2] / _ARCSEC, "leading_member": lead, "member_phase": phase,
+            "ring_angle_deg": math.degrees(phi3_lead), "members": members, "shaft": i + 1,
+            "d_ex_um": errors.d_ex * 1e3, "d_gamma_arcmin": math.degrees(errors.d_gamma) * 60}
+    return Scene("twin", tuple(parts), tuple(itfs), "sun",
+                 {"planet": (planet_ref, 0.0), "ring": (ring_ref, -abs(torque))},
+                 ("sun", (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), abs(torque) * ratio), ratio, info)

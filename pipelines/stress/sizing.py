@@ -1,0 +1,117 @@
+r"""Element sizes of the loaded flanks from Hertz's contact (the formulas are in :mod:`pipelines.stress.scene`)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from scipy.optimize import brentq
+from scipy.special import ellipe, ellipk
+
+from tca.errors import GeometryError, InputError
+from tca.gear import Gear
+from tca.pair_tca import ContactKind
+
+__all__ = ["hertz_contact", "SizeRules", "contact_sizes", "NEIGHBOUR"]
+
+# ---------------------------------------------------------------------------------------------- Hertz and sizes
+def hertz_contact(lam: tuple, load: float, E: float, nu: float, length: float) -> dict:
+    """Hertz contact of two bodies of one material: semi-axes a >= b [mm], peak p0 [MPa] (module docstring).
+
+    lam: eigenvalues (λ1, λ2) of the relative curvature [1/mm]; load [N]; ``length`` [mm] bounds
+    the major axis (the face width; a line contact is spread over it).
+    """
+    Es = E / (2.0 * (1.0 - nu**2))
+    l1, l2 = sorted(float(x) for x in lam)
+    if not (l2 > 0 and load > 0):
+        raise GeometryError("contact", "not convex", f"relative curvatures {l1:.3g}, {l2:.3g} 1/mm and load {load:.3g} N: "
+                            "the surfaces do not touch at a point or line (no Hertz estimate)")
+    A, B = 0.5 * l1, 0.5 * l2
+    if A > 0:
+        if B / A < 1 + 1e-9:
+            a = (3 * load / (8 * A * Es)) ** (1 / 3)
+            b = a
+        else:
+            def f(e):
+                m = e * e
+                K, Ee = ellipk(m), ellipe(m)
+                return ((Ee / (1 - m)) - K) / (K - Ee) - B / A
+            e = brentq(f, 1e-6, 1 - 1e-15, xtol=1e-14)
+            m = e * e
+            K, Ee = ellipk(m), ellipe(m)
+            a = (3 * load * (K - Ee) / (2 * math.pi * A * Es * m)) ** (1 / 3)
+            b = a * math.sqrt(1 - m)
+        if a <= 0.5 * length:
+            return {"a_mm": a, "b_mm": b, "p0_mpa": 3 * load / (2 * math.pi * a * b), "line": False, "load_n": load}
+    R = 1.0 / l2
+    P1 = load / length
+    b = math.sqrt(4 * P1 * R / (math.pi * Es))
+    return {"a_mm": 0.5 * length, "b_mm": b, "p0_mpa": 2 * P1 / (math.pi * b), "line": True, "load_n": load}
+
+
+NEIGHBOUR = 0.1  # default profile size on the other teeth's loaded flanks [module] (converged load share, see README)
+
+
+@dataclass(frozen=True)
+class SizeRules:
+    """Element sizes of the models [mm, or multiples of the module m]; every size is divided by ``refine``.
+
+    None: the Hertz-based contact sizes of the module docstring, ``coarse`` = 0.75 m,
+    ``fillet`` = 0.1 m, ``neighbour`` = NEIGHBOUR m (profile size on the loaded side of the
+    other teeth, :func:`mesher.body.plan_tooth`; divided by ``refine`` only when ``refine`` > 1),
+    rim depth 3 m. Default ``refine`` = 1: the cheapest
+    level of ``pipelines.bench.stress`` with the maximum von Mises stress within 5 % (README,
+    "Stress speed vs error").
+    """
+
+    refine: float = 1.0
+    teeth: int = 3
+    rim_depth: float | None = None
+    coarse: float | None = None
+    contact: float | None = None
+    axial: float | None = None
+    fillet: float | None = None
+    neighbour: float | None = None
+    growth: float = 1.3
+    zone: float = 1.2
+
+    def __post_init__(self):
+        if not (0.1 <= self.refine <= 10.0):
+            raise InputError("mesh.refine", self.refine, "in [0.1, 10] (element sizes are divided by it)")
+        if not (isinstance(self.teeth, int) and not isinstance(self.teeth, bool) and 1 <= self.teeth <= 9):
+            raise InputError("mesh.teeth", self.teeth, "an integer in [1, 9] (teeth per gear part)")
+        for k in ("rim_depth", "coarse", "contact", "axial", "fillet", "neighbour"):
+            v = getattr(self, k)
+            if v is not None and not (v > 0 and math.isfinite(v)):
+                raise InputError(f"mesh.{'rim_depth' if k == 'rim_depth' else k + '_size'}_mm", v, "> 0 mm")
+        if not (1.05 <= self.growth <= 3.0):
+            raise InputError("mesh.growth", self.growth, "in [1.05, 3]")
+        if not (0.0 <= self.zone <= 5.0):
+            raise InputError("mesh.zone", self.zone, "in [0, 5] (zone half-lengths over the Hertz ellipse's)")
+
+
+def contact_sizes(rules: SizeRules, gear: Gear, hz: dict, angle: float, kind: int) -> dict:
+    """Sizes and zone of one loaded flank: keys coarse, contact, axial, fillet, rim, growth, extent_u, extent_z [mm]."""
+    m, r = gear.module, rules.refine
+    coarse = (rules.coarse if rules.coarse is not None else 0.75 * m) / r
+    a, b = hz["a_mm"], hz["b_mm"]
+    s, c = abs(math.sin(angle)), abs(math.cos(angle))
+    surface = kind == ContactKind.SURFACE and not hz["line"]
+    contact = rules.contact if rules.contact is not None else b / 3.0
+    if rules.axial is not None:
+        axial = rules.axial
+    elif surface:
+        axial = min(a / 6.0, b / (3.0 * s) if s > 1e-12 else math.inf)
+    else:
+        axial = 2.0 * contact
+    contact = min(max(contact, 0.005 * m), coarse * r) / r
+    axial = min(max(axial, contact * r), coarse * r) / r
+    fillet = min((rules.fillet if rules.fillet is not None else 0.1 * m) / r, coarse)
+    # a resolution of the flank geometry (facet sag against the elastic approach), not of a stress gradient:
+    # coarser models (refine < 1) keep it, finer ones refine it too
+    neighbour = min((rules.neighbour if rules.neighbour is not None else NEIGHBOUR * m) / max(r, 1.0), coarse)
+    ext_u = rules.zone * (a * s + b * c) if surface else rules.zone * b
+    ext_z = rules.zone * (a * c + b * s) if surface else 0.0
+    return {"coarse": coarse, "contact": contact, "axial": axial, "fillet": fillet, "neighbour": neighbour,
+            "rim": rules.rim_depth if rules.rim_depth is not None else 3.0 * m, "growth": rules.growth,
+            "extent_u": ext_u, "extent_z": ext_z}
