@@ -42,6 +42,8 @@ configuration.
 
 from __future__ import annotations
 
+from .units import ARCSEC
+
 import math
 import time
 from dataclasses import dataclass, field
@@ -60,7 +62,6 @@ from .transforms import Mount
 
 __all__ = ["FaceMesh", "FaceMeshResult", "run_face_mesh", "trace_reference_pair", "ARCSEC", "SURFACE", "EDGE"]
 
-ARCSEC = math.pi / (180 * 3600)
 PREFER_WEIGHTS = np.array([1e-3, 1e-3, 0.0, 0.0, 0.0])
 
 

@@ -6,6 +6,8 @@ the distances); the period of the carrier TE by a least-squares scan of sinusoid
 
 from __future__ import annotations
 
+from .units import ARCSEC
+
 import math
 from dataclasses import dataclass, field
 from typing import Any
@@ -17,7 +19,6 @@ from .isostatic_train import PlanetaryTrain
 
 __all__ = ["IsostaticResult", "fit_circle", "dominant_period", "ARCSEC"]
 
-ARCSEC = math.pi / (180 * 3600)
 
 
 def fit_circle(p: np.ndarray) -> tuple[np.ndarray, float]:

@@ -39,13 +39,13 @@ from tca.errors import GearfeError, InputError
 from tca.gear import Gear
 from tca.pair import GearPair, Misalignment
 from tca.pair_tca import TCAOptions
+from tca.units import ARCMIN
 
 from pipelines.cases.schema import Table
 
 __all__ = ["load_case", "read_gear", "read_gears", "read_pair", "read_misalignment", "read_tca_options", "CASES_DIR"]
 
 CASES_DIR = Path(__file__).parent  # the shipped case files sit beside this module
-ARCMIN = math.radians(1 / 60)
 
 
 def load_case(path: str | Path) -> Table:

@@ -68,6 +68,7 @@ from tca.pair_tca import ContactKind, PairTCAResult
 from tca.planetary import PlanetaryTrain, ShaftErrors
 from tca.planetary_mesh import MeshTE, member_pose, subgear_pairs
 from tca.transforms import rot_x, rot_z
+from tca.units import ARCSEC
 
 from pipelines.stress.sizing import SizeRules, contact_sizes, hertz_contact
 
@@ -288,7 +289,7 @@ def pair_scene(pair: GearPair, result: PairTCAResult, phi1: float, torque: float
                      "driven")
     m1, m2 = pair.mounts()
     ratio = g1.teeth / g2.teeth
-    info = {"phi1_deg": math.degrees(phi1), "phi2_deg": math.degrees(c.phi2), "te_arcsec": c.te / _ARCSEC,
+    info = {"phi1_deg": math.degrees(phi1), "phi2_deg": math.degrees(c.phi2), "te_arcsec": c.te / ARCSEC,
             "active_pair": c.k, "kind": _kind_name(c.kind), "on_tca_grid": c.exact,
             "instantaneous_ratio": c.ratio, "te_slope": c.slope, "next_pair_gap_um": c.next_gap * 1e3,
             "loaded_teeth": {g1.name: itf.driver.centre, g2.name: itf.driven.centre}}
@@ -297,7 +298,6 @@ def pair_scene(pair: GearPair, result: PairTCAResult, phi1: float, torque: float
                  (g1.name, tuple(m1.origin), tuple(m1.axis), abs(torque) * ratio), ratio, info)
 
 
-_ARCSEC = math.pi / (180 * 3600)
 
 
 PHASES = ("assembled", "nominal")
@@ -359,7 +359,7 @@ def twin_scene(train: PlanetaryTrain, subs: dict, errors: ShaftErrors, dz: tuple
                            ("planet", "ring"), (f"{k}_ring", k), "driver")
         itfs += [s_itf, r_itf]
         parts += [s_itf.driver, s_itf.driven, r_itf.driver, r_itf.driven]
-        members[k] = {"te3_arcsec": te3 / _ARCSEC, "te12_arcsec": own12.te / _ARCSEC, "te23_arcsec": c23.te / _ARCSEC,
+        members[k] = {"te3_arcsec": te3 / ARCSEC, "te12_arcsec": own12.te / ARCSEC, "te23_arcsec": c23.te / ARCSEC,
                       "sun_backlash_um": (c12.phi2 - own12.phi2) * r2 * 1e3,
                       "ring_backlash_um": (phi3_lead - c23.phi2) * r3 * 1e3,
                       "dz_mm": dz[0 if k == "a" else 1], "phi2_deg": math.degrees(c12.phi2),
@@ -377,7 +377,7 @@ def twin_scene(train: PlanetaryTrain, subs: dict, errors: ShaftErrors, dz: tuple
     planet_ref = ReferencePoint(tuple(0.5 * (oa + ob)), tuple(R0[:, 2]))
     ring_ref = ReferencePoint((0.0, 0.0, 0.0), (0.0, 0.0, -1.0))  # the ring turns positively about -z_f
     ratio = N1 / N3
-    info = {"phi1_deg": math.degrees(phi1), "te3_arcsec": per[lead][2] / _ARCSEC, "leading_member": lead, "member_phase": phase,
+    info = {"phi1_deg": math.degrees(phi1), "te3_arcsec": per[lead][2] / ARCSEC, "leading_member": lead, "member_phase": phase,
             "ring_angle_deg": math.degrees(phi3_lead), "members": members, "shaft": i + 1,
             "d_ex_um": errors.d_ex * 1e3, "d_gamma_arcmin": math.degrees(errors.d_gamma) * 60}
     return Scene("twin", tuple(parts), tuple(itfs), "sun",

@@ -14,7 +14,7 @@ from tca import GearPair, InputError, Misalignment, run_pair_tca
 
 from .gears import gear
 
-ARCMIN = math.radians(1 / 60)
+from tca.units import ARCMIN
 
 
 @lru_cache(maxsize=None)

@@ -11,7 +11,7 @@ from tca.pair_tca import ContactKind, TCAOptions, run_pair_tca
 from tca.report_data import table_1_1_planet, table_1_1_sun
 
 d = math.radians
-ARCMIN = d(1 / 60)
+from tca.units import ARCMIN
 
 
 @pytest.fixture(scope="module")

@@ -15,7 +15,7 @@ from tca.report_data import table_1_1_planet, table_1_1_sun
 from tca.surfaces import SurfacePoints
 
 d = math.radians
-ARCMIN = d(1 / 60)
+from tca.units import ARCMIN
 
 
 def involute_pair(beta, internal=False):
