@@ -39,7 +39,7 @@ from .pair import GearPair
 from .pair_bounded import bounded_pass
 from .pair_reference import solve_reference_pair
 from .pair_result import ContactKind, PairTCAResult, ReferencePairSolution, TCAOptions, _flanks, ellipse_outlines
-from .pair_transitions import _extremes, _transitions
+from .pair_transitions import Branches, extremes, transitions
 from .units import ARCSEC
 
 __all__ = ["TCAOptions", "ContactKind", "ReferencePairSolution", "PairTCAResult", "run_pair_tca", "solve_reference_pair", "bounded_pass", "ellipse_outlines",
@@ -125,8 +125,8 @@ def run_pair_tca(pair: GearPair, opts: TCAOptions = TCAOptions()) -> PairTCAResu
         ea[surf], eb[surf], eang[surf] = a_, b_, ang_
     # transitions: where the active pair changes, solved exactly (TE of both pairs equal) where both
     # contacts are surface contacts, interpolated otherwise
-    trans, trans_te = _transitions(pair, f1, f2, ref, J, s, opts, phi1, cand, a, ks, kind_c)
-    ext = _extremes(te, kk, kind, trans_te)
+    trans, trans_te = transitions(pair, (f1, f2), ref, opts, Branches(phi1, cand, kind_c, ks, a))
+    ext = extremes(te, kk, kind, trans_te)
     return PairTCAResult(
         pair, opts, phi1, phi2, te, kk, kind, w1.r,
         X[:, :4], l1.r, l2.r, ea, eb, eang, ref.residual[jr], ref, np.array(trans), time.perf_counter() - t0,

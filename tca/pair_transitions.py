@@ -8,6 +8,7 @@ branches, located by Newton on the difference of the two pairs' tangency systems
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -15,16 +16,34 @@ from .contact import tangency_system
 from .newton import newton
 from .pair_result import ContactKind
 
-__all__: list[str] = []
+__all__ = ["Branches", "transitions", "extremes"]
 
 
-def _transitions(pair, f1, f2, ref, J, s, opts, phi1, cand, a, ks, kind_c):
+@dataclass(frozen=True, eq=False)
+class Branches:
+    """Every pair of teeth within reach on the output grid of a pair TCA (section 1.4, step 3).
+
+    Column q holds the pair at tooth offset ``offsets[q]`` (tooth -k of each gear), whose contact is
+    the reference pair's at grid index j - k s; ``te`` is -inf where that pair is out of reach.
+    """
+
+    phi1: np.ndarray  # (n,) driving-gear angles [rad]
+    te: np.ndarray  # (n, K) Δφ2 of each pair [rad]
+    kind: np.ndarray  # (n, K) ContactKind of each pair
+    offsets: np.ndarray  # (K,) tooth offset k of each column
+    active: np.ndarray  # (n,) column of the pair in contact (largest Δφ2)
+
+
+def transitions(pair, flanks: tuple, ref, opts, br: Branches) -> tuple[list, list]:
     """phi1 and TE at each change of the pair in contact (exact where both contacts are surface contacts).
 
     Between grid points i and i+1 the pair in contact changes from ka to kb; the transition is the
     root of g(phi) = TE_ka(phi) - TE_kb(phi), where TE_k(phi) is the reference pair's TE at
     phi - k p (p the angular pitch). Regula falsi (Illinois) on batched tangency solves.
     """
+    f1, f2 = flanks
+    phi1, cand, a, ks, kind_c = br.phi1, br.te, br.active, br.offsets, br.kind
+    J, s = (len(ref.j) - 1) // 2, opts.steps_per_cycle
     pitch = 2 * math.pi / pair.gear1.teeth
     ratio = pair.ratio
     idx = np.flatnonzero(np.diff(ks[a]) != 0)
@@ -88,7 +107,7 @@ def _transitions(pair, f1, f2, ref, J, s, opts, phi1, cand, a, ks, kind_c):
     return t_phi.tolist(), t_te.tolist()
 
 
-def _extremes(te, kk, kind, trans_te):
+def extremes(te, kk, kind, trans_te):
     """(min, max) TE: grid values, exact transitions, and interior extrema refined by a local parabola."""
     vals = list(te) + [t for t in trans_te if np.isfinite(t)]
     for i in range(1, len(te) - 1):
