@@ -17,7 +17,7 @@ A gear table (``[gears.<name>]``)::
     parabola_drive_per_mm = 0.008    # a_c of the driving (+y) flank's rack, Eq. (1.5)
     parabola_coast_per_mm = 0.005    # a_c of the coast (-y) flank's rack
     parabola_apex_mm = 0.0           # apex of the rack parabola from the pitch point
-    runout_um = 0.0                  # eccentricity of the toothed body, Eqs. (3.5)-(3.6)
+    runout_um = 0.0                  # eccentricity of the toothed body, Eqs. (3.5)-(3.6); <= 0.1 module
     runout_phase_deg = 0.0
     [gears.<name>.plunge]            # longitudinal crowning by a plunging disk, Eq. (1.6)
     disk_radius_mm = 100.0
@@ -86,7 +86,7 @@ def read_gear(t: Table, name: str) -> Gear:
             parabola_neg=t.get("parabola_coast_per_mm", float, 0.0, lo=0.0, hi=0.5, hi_open=True),
             parabola_apex=t.get("parabola_apex_mm", float, 0.0, lo=-50.0, hi=50.0),
             plunge=plunge,
-            runout=t.get("runout_um", float, 0.0, lo=0.0, hi=5000.0) * 1e-3,
+            runout=t.get("runout_um", float, 0.0, lo=0.0, hi=1000.0) * 1e-3,
             runout_phase=math.radians(t.get("runout_phase_deg", float, 0.0)),
         )
     except InputError as e:  # name the key as it appears in the case file
