@@ -47,3 +47,26 @@ def test_runout_once_per_revolution(which, phase_deg):
     # once per revolution: the one-harmonic fit leaves nothing (not a per-tooth saw-tooth)
     assert rms < 0.02 * target
     assert res.te_peak_to_peak_arcsec == pytest.approx(2 * target / (math.pi / 180 / 3600), rel=0.02)
+
+
+def test_runout_beyond_a_tenth_of_the_module_is_refused():
+    from tca.errors import InputError
+
+    with pytest.raises(InputError, match=r"runout_um = 5000.0 is invalid: expected in \[0, 200\] um"):
+        dataclasses.replace(table_1_1_sun(10.0), runout=5.0)
+
+
+@pytest.mark.parametrize("z2, clash", [(40, True), (42, True), (43, False), (109, False)])
+def test_internal_tip_clash(z2, clash):
+    """Trochoid interference of a 34-tooth standard 20 deg spur pinion in a ring (SDP/SI handbook
+    T-45 Eq. 5-6: a standard pair needs z2 - z1 >= 9)."""
+    from tca.errors import GeometryError
+    from tca.gear import Gear
+
+    pin = Gear("planet", 34, 2.0, math.radians(20), 20.0)
+    ring = Gear("ring", z2, 2.0, math.radians(20), 20.0, internal=True)
+    if clash:
+        with pytest.raises(GeometryError, match="tip clash"):
+            GearPair(pin, ring)
+    else:
+        assert GearPair(pin, ring).trochoid_margin() > 0
