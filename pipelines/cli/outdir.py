@@ -4,12 +4,11 @@
 file, creatable and writable (probed by making and removing a temporary folder beside it), and,
 when it exists and holds files, only with ``--force`` (then same-named files are replaced, others
 kept) or, for resumable commands (``gearfe sweep``), when it holds that command's own marker file.
-
+"""
 
 from __future__ import annotations
 
 import contextlib
-import errno
 import os
 import shutil
 import tempfile
@@ -96,8 +95,6 @@ def _probe(folder: Path, out: str) -> None:
     try:
         tmp = tempfile.mkdtemp(prefix=".gearfe-probe-", dir=folder)
     except OSError as e:
-        why = os.strerror(e.errno) if e.errno else type(e).__name__
-        if e.errno in (errno.EROFS, errno.EPERM, errno.EACCES):
-            why += f" in {folder}"
+        why = (os.strerror(e.errno) if e.errno else type(e).__name__) + f" in {folder}"
         raise InputError("--out", out, "a writable folder", why) from None
     os.rmdir(tmp)
