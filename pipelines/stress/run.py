@@ -74,7 +74,7 @@ from tca.planetary_mesh import phi1_grid, run_subgear_tca
 from tca.planetary_regulation import nominal_peak, regulate_member, twin_te
 
 from pipelines.stress.case import StressCase
-from pipelines.stress.model import mesh_scene, solve_scene
+from pipelines.stress.model import check_resources, mesh_scene, solve_scene
 from pipelines.stress.results import member_teeth, summarize
 from pipelines.stress.scene import pair_scene, twin_scene
 
@@ -227,6 +227,8 @@ def run_stress(case: StressCase, out: Path, progress=None, artefacts: dict | Non
     t_tca = time.perf_counter() - t0
     pos = scene.info
     say(f"tca: done in {t_tca:.1f} s (phi1 = {pos['phi1_deg']:.4f} deg)")
+    est = check_resources(scene, case.mesh)  # refuses a model beyond the memory limit, before meshing
+    say(f"mesh: estimated {est.elements} elements, {est.dofs} DOF, {est.memory_gb:.2g} GB")
     t1 = time.perf_counter()
     mesh = mesh_scene(scene)
     t_mesh = time.perf_counter() - t1
