@@ -57,7 +57,12 @@ def read_with_overrides(path, args) -> StressCase:
         data["phi1_deg"] = args.phi1_deg
     if args.position is not None:
         data.pop("phi1_deg", None)
-        data["position"] = int(args.position) if re.fullmatch(r"-?[0-9]{1,9}", args.position) else args.position
+        if re.fullmatch(r"-?[0-9]{1,9}", args.position):
+            data["position"] = int(args.position)
+        elif args.position in ("max_te", "min_te"):
+            data["position"] = args.position
+        else:
+            raise InputError("--position", args.position, "'max_te', 'min_te' or an integer index of the TCA grid")
     if args.refine is not None:
         if not isinstance(data.get("mesh", {}), dict):
             raise InputError("mesh", data["mesh"], "a table [mesh] (--refine sets mesh.refine)")

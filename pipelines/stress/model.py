@@ -1,4 +1,4 @@
-"""Mesh and FE model of a stress scene (Steps 4–6, Fig. 1.7) and its contact solve.
+r"""Mesh and FE model of a stress scene (Steps 4–6, Fig. 1.7) and its contact solve.
 
 Each part of the scene is meshed by :func:`mesher.mesh_gear` around its loaded tooth (graded at the
 TCA contact point with the scene's sizes and zone) and moved into S_f; parts of one body are joined

@@ -188,7 +188,7 @@ FORCE_RATIO_RANGE = (0.5, 2.0)  # contact force / (T / (r_b cos beta_b)) outside
 
 
 def plausibility_warnings(case: StressCase, s: dict) -> list[str]:
-    """Checks of a solved case against statics: the reaction torque balances T, and (pair model) the
+    r"""Checks of a solved case against statics: the reaction torque balances T, and (pair model) the
     normal contact force is near the nominal :math:`F_n = T / (r_{b2}\cos\beta_b)` of the driven gear
     (load shared by up to two pairs of teeth, so a factor of two either way is plausible)."""
     out = []
