@@ -161,6 +161,10 @@ def read_stress_case(case: Table) -> StressCase:
             if case.has(k):
                 raise InputError(k, case.data[k], "no planetary-train keys in a 'pair' case")
         pair, _, _ = read_pair(case, read_gears(case))
+        for g in (pair.gear1, pair.gear2):
+            if g.runout > 0:  # the FE scene places a periodic pair (tca.planetary_mesh.MeshTE): refuse, not ignore
+                raise InputError(f"gears.{g.name}.runout_um", g.runout * 1e3, "0 in a stress case (run-out is analysed "
+                                 "by gearfe tca; the FE model places the teeth of a pair without it)")
         out = StressCase("pair", torque, title, pair=pair, position=pos, phi1=phi1, tca=tca, mesh=mesh, fe=fe)
     else:
         for k in ("driver", "driven", "center_distance_mm", "misalignment"):

@@ -76,6 +76,7 @@ _STRESS = [
     ({"mesh.teeth": 0}, "mesh.teeth"), ({"mesh.contact_size_mm": -1.0}, "mesh.contact_size_mm"),
     ({"position": 1.5}, "position"), ({"position": "middle"}, "position"), ({"fe.element": "C3D20"}, "fe.element"),
     ({"colour": "red"}, "colour"), ({"gears.planet.runout_um": 5000.0}, "runout_um"),
+    ({"gears.sun.runout_um": 20.0}, "runout_um"),
 ]
 
 _SWEEP = [
