@@ -240,7 +240,10 @@ def _run_dask(task: str, points: list[dict], out: Path, args, t0: float) -> list
 
     cluster = None
     if args.scheduler:
-        client = Client(args.scheduler)
+        try:  # a port that answers but is not a Dask scheduler: fail after 30 s, in one line
+            client = Client(args.scheduler, timeout=f"{10 * SCHEDULER_TIMEOUT_S:g}s")
+        except (OSError, TimeoutError) as e:
+            raise InputError("--scheduler", args.scheduler, "a Dask scheduler", f"{type(e).__name__}: {e}") from None
     else:
         n = args.workers or os.cpu_count() or 1
         cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None)
