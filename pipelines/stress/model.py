@@ -15,21 +15,21 @@ The solver keeps as contact candidates the slave nodes whose initial gap is belo
 is repeated with the search gap doubled (up to ``max_search_gap``).
 
 Resource estimate (before meshing, :func:`estimate_resources`). A part's structured hexahedral
-mesh is a tensor product: axial layers times a transverse section. Along a direction of length
-:math:`L` graded from size :math:`h` (over a zone of half-length :math:`e` around the contact)
-to the coarse size :math:`c` with growth :math:`q`, the count is
+mesh is a tensor product: axial layers times a transverse section. Along the face width
+:math:`F`, graded from the axial contact size :math:`h_a` (over a zone of half-length :math:`e_z`)
+to the coarse size :math:`c` with growth :math:`q`, the layers are
 
-.. math::  n(L, h, c, e, q) = \min\Big(L/h,\; 2e/h + 2\ln(c/h)/\ln q + L/c\Big),
+.. math::  n_z = \min\Big(F/h_a,\; 2e_z/h_a + 2\ln(c/h_a)/\ln q + F/c\Big),
 
-with :math:`n_z = n(F, h_{axial}, c, e_z, q)` layers, a section of
-:math:`n_s = [n(2.25m, h_c, c, e_u, q) + n(m, h_f, c, 0, q) + t_{rim}/c]\,[n(0.8m, h_c, c, 0, q) + n(0.8m, h_f, c, 0, q)]`
-(profile x across the loaded tooth, :math:`h_c, h_f` the contact and fillet sizes) and :math:`T`
-teeth, the element count is :math:`N = k\,n_z\,n_s^{\alpha}\,T^{\beta}`, with
-:math:`k = e^{0.533}, \alpha = 0.741, \beta = 0.482` fitted to 12 real part meshes (Table 1.1 sun
-and planet at refine 0.5-2, one and three teeth, a 0.03 mm contact size: within -16 % / +26 %;
-the exponents under-predict the finest levels by up to ~ 3x at refine 10, enough to stop
-runaway models). DOF = 3 x 1.15 N (nodes per element of these meshes). Peak memory of the
-sparse direct solve (MEASURED: PARDISO 0.54 GB at 53k DOF, 8.2 GB at 499k DOF):
+and the section of :math:`T` teeth, in sizes relative to the module (:math:`\bar c = c/m`,
+:math:`\bar h = h_c/m`, :math:`h_c` the contact size) is
+:math:`n_s = 155 + 33.7\,\bar c^{-2} + 7.5\,\bar h^{-1} + 37.6\,(T-1)\,\bar c^{-2}` (the coarse
+area of the loaded tooth and its rim, the grading towards the contact point, the other teeth),
+so :math:`N = n_z n_s`. The four coefficients are a least-squares fit to 20 real part meshes
+(Table 1.1 sun and planet, refine 0.5-3, one, three and five teeth, contact sizes 0.015-0.16 mm):
+within -7 % / +15 % of the mesher's counts (``make bench``, area ``reliability``, checks it).
+DOF = 3 x 1.15 N (nodes per element of these meshes). Peak memory of the
+sparse direct solve (PARDISO measured on a hexahedral box: 0.54 GB at 53k DOF, 8.2 GB at 499k DOF):
 :math:`M = 0.54\,(\mathrm{DOF}/53\,000)^{1.21}` GB. A model whose estimate exceeds the limit
 (``GEARFE_MAX_MEMORY_GB``, default 80 % of the machine's physical memory) is refused with an
 :class:`~tca.errors.InputError` naming the ``[mesh]`` key that made it large.
@@ -90,7 +90,7 @@ class FESettings:
 
 
 # element-count model of the module docstring, fitted to real meshes
-_K, _ALPHA, _BETA = math.exp(0.533), 0.741, 0.482
+_SECTION = (155.0, 33.7, 7.5, 37.6)  # n_s = a + b / cbar^2 + c / hbar + d (T - 1) / cbar^2
 _NODES_PER_ELEMENT = 1.15
 _MEM_GB_REF, _DOF_REF, _MEM_EXP = 0.54, 53_000.0, 1.21
 
@@ -113,16 +113,15 @@ def _count(L: float, h: float, c: float, ext: float, q: float) -> float:
 def estimate_resources(scene: Scene) -> ResourceEstimate:
     """Element, DOF and memory estimate of the scene's model from its size rules (no meshing)."""
     n = 0.0
+    a, b, c_, d = _SECTION
     for p in scene.parts:
-        s, m, q = p.sizes, p.gear.module, p.sizes["growth"]
+        s, m = p.sizes, p.gear.module
         c = s["coarse"]
-        nz = _count(p.gear.face_width, s["axial"], c, getattr(p.focus, "extent_z", 0.0), q)
-        prof = (_count(2.25 * m, s["contact"], c, getattr(p.focus, "extent_u", 0.0), q)
-                + _count(m, s["fillet"], c, 0.0, q) + s["rim"] / c)
-        across = _count(0.8 * m, s["contact"], c, 0.0, q) + _count(0.8 * m, s["fillet"], c, 0.0, q)
-        n += _K * nz * (prof * across) ** _ALPHA * s["teeth"] ** _BETA
+        nz = _count(p.gear.face_width, s["axial"], c, getattr(p.focus, "extent_z", 0.0), s["growth"])
+        cbar, hbar = c / m, min(s["contact"], c) / m
+        n += nz * (a + b / cbar**2 + c_ / hbar + d * (s["teeth"] - 1) / cbar**2)
     dofs = 3.0 * _NODES_PER_ELEMENT * n
-    return ResourceEstimate(int(n), int(dofs), _MEM_GB_REF * (dofs / _DOF_REF) ** _MEM_EXP)
+    return ResourceEstimate(int(n), int(dofs), float(_MEM_GB_REF * (dofs / _DOF_REF) ** _MEM_EXP))
 
 
 def memory_limit_gb() -> float:
