@@ -80,7 +80,7 @@ def write_inputs(tmp_path, command, base, edits, raw):
     return pos
 
 
-def check_refused(capsys, tmp_path, argv, expect: str, max_s: float = 1.5) -> str:
+def check_refused(capsys, tmp_path, argv, expect: str, max_s: float = 3.0) -> str:
     """Run main(argv) and check the error contract; returns the error line."""
     before = {p.name: (p.read_bytes() if p.is_file() else None) for p in tmp_path.iterdir()}
     full = sorted(p.name for p in (tmp_path / "full").iterdir()) if (tmp_path / "full").is_dir() else None
