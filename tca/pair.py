@@ -120,7 +120,7 @@ class GearPair:
             \theta_2 = \arccos\frac{a^2 + r_{a2}^2 - r_{a1}^2}{2 a r_{a2}}
 
         (the angles turned by each gear from the tips' crossing point to the end of the path of
-        contact; e.g. standard 20 deg spur gears need :math:`z_2 - z_1 \ge 9`). External pairs: +inf.
+        contact; e.g. a standard 20 deg spur pinion of 34 teeth needs a ring of 43 or more). External pairs: +inf.
         """
         if self.kind == "external":
             return math.inf
