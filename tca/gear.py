@@ -101,8 +101,10 @@ class Gear:
             raise InputError(f"{f}.addendum", self.addendum, "in (0, 2] modules")
         if self.tool_addendum <= self.addendum:
             raise InputError(f"{f}.tool_addendum", self.tool_addendum, f"> addendum {self.addendum} (clearance)")
-        if self.runout < 0:
-            raise InputError(f"{f}.runout_mm", self.runout, ">= 0")
+        # run-out is a small error of the toothed body (Eqs. 3.5-3.6): beyond a tenth of a module
+        # the flanks of neighbouring teeth of the mate would be reached, not just displaced
+        if not (0 <= self.runout <= 0.1 * self.module):
+            raise InputError(f"{f}.runout_um", self.runout * 1e3, f"in [0, {100 * self.module:g}] um (0.1 module)")
         if self.plunge is not None and self.internal:
             raise InputError(f"{f}.plunge", "internal", "external gears only (disk plunging)")
         self.rack  # builds and validates the rack-cutter

@@ -34,6 +34,7 @@ contact leaving the working areas (edge contact, not modelled in the plane) rais
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from dataclasses import dataclass
@@ -237,6 +238,28 @@ def _solve_direct(train, fl, m, x, E, free, opts, wpos):
     return x6, X[:, :nf].copy(), r.iterations
 
 
+ROUNDING_FACTOR = 16.0  # residual terms summed in Eq. (3.18), each rounded to eps |angle| R
+
+
+def scaled_tolerances(train: PlanetaryTrain, phi1: np.ndarray, options: IsostaticOptions) -> IsostaticOptions:
+    r"""Newton targets no finer than double precision can resolve at the angles reached [mm].
+
+    Positions are :math:`R(\phi)\,r` with angles that grow without bound over a long run; rounding
+    gives each an error of about :math:`\varepsilon\,|\phi|\,R` (:math:`\varepsilon` the machine
+    epsilon, :math:`R` the ring's tip-to-root size), so after 50 carrier revolutions (sun angle
+    ~ 900 rad, planet angle larger by :math:`N_1/N_2`) the residuals of Eq. (3.18) cannot go below
+    ~ 1e-11 mm. The targets ``tol`` and ``outer_tol`` are raised to
+    :math:`16\,\varepsilon\,\Phi\,R` (and ten times that), :math:`\Phi` the largest member angle
+    [rad]; for the short runs of the report they are unchanged.
+    """
+    phi_max = float(np.max(np.abs(phi1))) * max(1.0, train.sun.teeth / train.planet.teeth)
+    size = train.ring.r_p + 3 * train.ring.module
+    floor = float(ROUNDING_FACTOR * np.finfo(float).eps * phi_max * size)
+    if floor <= options.tol:
+        return options
+    return dataclasses.replace(options, tol=max(options.tol, floor), outer_tol=max(options.outer_tol, 10 * floor))
+
+
 def run_isostatic_tca(train: PlanetaryTrain, phi1, options: IsostaticOptions = IsostaticOptions()) -> IsostaticResult:
     """Configuration of the train (centres, carrier, planets, contacting teeth) at the sun angles phi1 [rad]."""
     t0 = time.perf_counter()
@@ -244,6 +267,7 @@ def run_isostatic_tca(train: PlanetaryTrain, phi1, options: IsostaticOptions = I
     phi1 = np.asarray(phi1, float).reshape(-1)
     if len(phi1) == 0 or not np.all(np.isfinite(phi1)):
         raise InputError("phi1", phi1[:5].tolist(), "one or more finite sun angles")
+    options = scaled_tolerances(train, phi1, options)
     fl = TrainFlanks.of(train, options.section_z)
     n, Np = len(phi1), train.n_planets
     free = train.constraints.free_centres

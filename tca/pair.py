@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .errors import InputError
+from .errors import GeometryError, InputError
 from .gear import Gear
 from .transforms import Mount, rot_x, rot_y
 
@@ -97,6 +97,49 @@ class GearPair:
             ext, intl = (g2, g1) if g1.internal else (g1, g2)
             if intl.teeth - ext.teeth < 5:
                 raise InputError(f"{intl.name}.teeth", intl.teeth, f">= {ext.teeth + 5} (internal gear must have more teeth than its pinion)")
+            margin = self.trochoid_margin()
+            if margin < 0:
+                raise GeometryError(
+                    "pair", "tip clash",
+                    f"the tips of {ext.name} ({ext.teeth} teeth) and of the internal gear {intl.name} ({intl.teeth} teeth) "
+                    f"clash as the teeth leave the mesh (trochoid interference, margin {margin:.2e} rad < 0); "
+                    f"use more teeth on {intl.name} or shorter addenda")
+
+    def trochoid_margin(self) -> float:
+        r"""Trochoid-interference margin of an internal pair [rad]: >= 0 when the tips pass free.
+
+        As the pinion (1) tooth leaves the mesh its tip corner runs along a trochoid relative to the
+        internal gear (2); it clears the internal gear's tip corner when (transverse plane, centre
+        distance :math:`a`, working pressure angle :math:`\alpha_w`, tip pressure angles
+        :math:`\alpha_{ai} = \arccos(r_{bi}/r_{ai})`)
+
+        .. math::
+            \frac{z_1}{z_2}\theta_1 + \mathrm{inv}\,\alpha_w - \mathrm{inv}\,\alpha_{a2} - \theta_2 \ge 0,\quad
+            \theta_1 = \arccos\frac{r_{a2}^2 - r_{a1}^2 - a^2}{2 a r_{a1}} + \mathrm{inv}\,\alpha_{a1}
+            - \mathrm{inv}\,\alpha_w,\quad
+            \theta_2 = \arccos\frac{a^2 + r_{a2}^2 - r_{a1}^2}{2 a r_{a2}}
+
+        (the angles turned by each gear from the tips' crossing point to the end of the path of
+        contact; e.g. a standard 20 deg spur pinion of 34 teeth needs a ring of 43 or more). External pairs: +inf.
+        """
+        if self.kind == "external":
+            return math.inf
+        ext, intl = (self.gear2, self.gear1) if self.gear1.internal else (self.gear1, self.gear2)
+        inv = lambda x: math.tan(x) - x  # noqa: E731
+        a = self.E
+        a0 = intl.r_p - ext.r_p
+        c = a0 * math.cos(ext.transverse_pressure_angle) / a
+        if not -1.0 < c < 1.0:
+            return math.inf  # no working pressure angle: other checks report the centre distance
+        aw = math.acos(c)
+        ra1, ra2 = ext.r_tip, intl.r_tip
+        c1 = (ra2**2 - ra1**2 - a**2) / (2 * a * ra1)
+        c2 = (a**2 + ra2**2 - ra1**2) / (2 * a * ra2)
+        if not (-1.0 <= c1 <= 1.0 and -1.0 <= c2 <= 1.0):
+            return math.inf  # the tip circles do not cross: no trochoid reaches the internal gear's tips
+        t1 = math.acos(c1) + inv(math.acos(ext.r_b / ra1)) - inv(aw)
+        t2 = math.acos(c2)
+        return ext.teeth / intl.teeth * t1 + inv(aw) - inv(math.acos(intl.r_b / ra2)) - t2
 
     @property
     def kind(self) -> str:

@@ -38,6 +38,7 @@ from .errors import GeometryError
 from .pair import GearPair
 from .pair_bounded import bounded_pass
 from .pair_reference import solve_reference_pair
+from .pair_runout import has_runout, solve_candidate_pair, turned_pair
 from .pair_result import ContactKind, PairTCAResult, ReferencePairSolution, TCAOptions, _flanks, ellipse_outlines
 from .pair_transitions import Branches, extremes, transitions
 from .units import ARCSEC
@@ -82,9 +83,38 @@ def run_pair_tca(pair: GearPair, opts: TCAOptions = TCAOptions()) -> PairTCAResu
         idx = jj[ok] + J
         need[idx] |= (ref.kind[idx] == ContactKind.NONE) & ~ref.out_of_mesh[idx] & (
             (te_tan[idx] > env[ok] + 1e-10) | ~np.isfinite(env[ok]))
-    bounded_pass(pair, ref, np.flatnonzero(need), opts)
-    te_ref = ref.phi2 - ratio * ref.phi1
-    cand = np.where(valid, te_ref[np.clip(rj + J, 0, 2 * J)], -np.inf)
+    rjc = np.clip(rj + J, 0, 2 * J)
+    if has_runout(pair):
+        # every pair of teeth sees the eccentricity at its own angle (tca.pair_runout)
+        turned = {int(k): turned_pair(pair, int(k)) for k in ks}
+        sols = {int(k): solve_candidate_pair(pair, ref, int(k), np.unique(rjc[valid[:, q], q]), opts)
+                for q, k in enumerate(ks) if valid[:, q].any()}
+        col = [sols.get(int(k), None) for k in ks]
+        # bounded contacts where a pair's tangency lies above the envelope of the others (as above)
+        te_c = np.stack([c.phi2[rjc[:, q]] if c is not None else np.full(len(out_j), -np.inf)
+                         for q, c in enumerate(col)], 1) - ratio * ref.phi1[rjc]
+        env = np.where(valid, te_c, -np.inf).max(1)
+        for q, c in enumerate(col):
+            if c is None:
+                continue
+            jj, ok = rjc[:, q], valid[:, q]
+            te_t = np.where(c.tangency, c.x[:, 4] - ratio * c.phi1, np.inf)[jj]
+            sel = ok & (c.kind[jj] == ContactKind.NONE) & ~c.out_of_mesh[jj] & ((te_t > env + 1e-10) | ~np.isfinite(env))
+            bounded_pass(turned[int(ks[q])], c, np.unique(jj[sel]), opts)
+
+        def pick(attr, fill):
+            return np.stack([getattr(c, attr)[rjc[:, q]] if c is not None else np.full(len(out_j), fill)
+                             for q, c in enumerate(col)], 1)
+
+        te_c = pick("phi2", -np.inf) - ratio * ref.phi1[rjc]
+        kind_all, x_all = pick("kind", 0), np.stack([c.x[rjc[:, q]] if c is not None else ref.x[rjc[:, q]]
+                                                       for q, c in enumerate(col)], 1)
+        res_all, where_all = pick("residual", np.nan), pick("where", 0)
+        cand = np.where(valid, te_c, -np.inf)
+    else:
+        bounded_pass(pair, ref, np.flatnonzero(need), opts)
+        te_ref = ref.phi2 - ratio * ref.phi1
+        cand = np.where(valid, te_ref[rjc], -np.inf)
     if not np.all(np.isfinite(cand.max(1))):
         i = int(np.flatnonzero(~np.isfinite(cand.max(1)))[0])
         raise GeometryError("pair", "no contact",
@@ -93,25 +123,35 @@ def run_pair_tca(pair: GearPair, opts: TCAOptions = TCAOptions()) -> PairTCAResu
                             "(contact ratio below 1, or working areas that do not overlap)")
     best = cand.max(1, keepdims=True)
     tie = cand >= best - 1e-10
-    kind_c = np.where(valid, ref.kind[np.clip(rj + J, 0, 2 * J)], 0)
+    kind_c = np.where(valid, kind_all if has_runout(pair) else ref.kind[rjc], 0)
     pref = np.where(tie, (kind_c == ContactKind.SURFACE) * 1e6 - np.abs(rj), -np.inf)
     a = np.argmax(pref, 1)
     jr = rj[np.arange(len(out_j)), a] + J
     pitch1 = 2 * math.pi / pair.gear1.teeth
     kk = ks[a]
     phi1 = ref.phi1[J] + out_j * (pitch1 / s)
-    te = te_ref[jr]
+    rows = np.arange(len(out_j))
+    te = cand[rows, a]
     phi2 = te + ratio * phi1
-    kind = ref.kind[jr]
+    kind = kind_c[rows, a]
     if np.any(kind == ContactKind.FILLET):
         i = int(np.flatnonzero(kind == ContactKind.FILLET)[0])
         raise GeometryError("pair", "interference",
                             f"at phi1 = {math.degrees(phi1[i]):.4f} deg the tooth in contact touches below the start of "
                             f"the fillet of its mate (tip interference); reduce the addendum or change the profile shifts")
-    X = ref.x[jr]
-    # contact points in S_f and on the reference teeth
-    w1, l1, _ = f1.world(X[:, 0], X[:, 1], ref.phi1[jr])
-    w2, l2, _ = f2.world(X[:, 2], X[:, 3], X[:, 4])
+    if has_runout(pair):
+        X, residual, where = x_all[rows, a], res_all[rows, a], where_all[rows, a]
+        # contact points with each pair's own placement of the eccentric bodies
+        fs = [_flanks(turned[int(k)]) for k in kk]
+        w1 = _stack_points([f[0].world(X[i:i + 1, 0], X[i:i + 1, 1], ref.phi1[jr[i:i + 1]])[0] for i, f in enumerate(fs)])
+        w2 = _stack_points([f[1].world(X[i:i + 1, 2], X[i:i + 1, 3], X[i:i + 1, 4])[0] for i, f in enumerate(fs)])
+        l1 = _stack_points([f[0].world(X[i:i + 1, 0], X[i:i + 1, 1], ref.phi1[jr[i:i + 1]])[1] for i, f in enumerate(fs)])
+        l2 = _stack_points([f[1].world(X[i:i + 1, 2], X[i:i + 1, 3], X[i:i + 1, 4])[1] for i, f in enumerate(fs)])
+    else:
+        X, residual, where = ref.x[jr], ref.residual[jr], ref.where[jr]
+        # contact points in S_f and on the reference teeth
+        w1, l1, _ = f1.world(X[:, 0], X[:, 1], ref.phi1[jr])
+        w2, l2, _ = f2.world(X[:, 2], X[:, 3], X[:, 4])
     ea = np.full(len(jr), np.nan)
     eb = np.full(len(jr), np.nan)
     eang = np.full(len(jr), np.nan)
@@ -125,12 +165,16 @@ def run_pair_tca(pair: GearPair, opts: TCAOptions = TCAOptions()) -> PairTCAResu
         ea[surf], eb[surf], eang[surf] = a_, b_, ang_
     # transitions: where the active pair changes, solved exactly (TE of both pairs equal) where both
     # contacts are surface contacts, interpolated otherwise
-    trans, trans_te = transitions(pair, (f1, f2), ref, opts, Branches(phi1, cand, kind_c, ks, a))
+    trans, trans_te = transitions(pair, (f1, f2), ref, opts, Branches(phi1, cand, kind_c, ks, a),
+                                  exact=not has_runout(pair))
     ext = extremes(te, kk, kind, trans_te)
     return PairTCAResult(
         pair, opts, phi1, phi2, te, kk, kind, w1.r,
-        X[:, :4], l1.r, l2.r, ea, eb, eang, ref.residual[jr], ref, np.array(trans), time.perf_counter() - t0,
-        ref.where[jr], np.array(trans_te), ext,
+        X[:, :4], l1.r, l2.r, ea, eb, eang, residual, ref, np.array(trans), time.perf_counter() - t0,
+        where, np.array(trans_te), ext,
     )
 
 
+def _stack_points(pts):
+    """Concatenate SurfacePoints records of single points."""
+    return type(pts[0])(*(np.concatenate(f) for f in zip(*pts)))

@@ -34,12 +34,14 @@ class Branches:
     active: np.ndarray  # (n,) column of the pair in contact (largest Δφ2)
 
 
-def transitions(pair, flanks: tuple, ref, opts, br: Branches) -> tuple[list, list]:
+def transitions(pair, flanks: tuple, ref, opts, br: Branches, exact: bool = True) -> tuple[list, list]:
     """phi1 and TE at each change of the pair in contact (exact where both contacts are surface contacts).
 
     Between grid points i and i+1 the pair in contact changes from ka to kb; the transition is the
     root of g(phi) = TE_ka(phi) - TE_kb(phi), where TE_k(phi) is the reference pair's TE at
     phi - k p (p the angular pitch). Regula falsi (Illinois) on batched tangency solves.
+    With ``exact=False`` (pairs that are not shifted copies of the reference pair: run-out) the
+    crossing is interpolated linearly on the grid.
     """
     f1, f2 = flanks
     phi1, cand, a, ks, kind_c = br.phi1, br.te, br.active, br.offsets, br.kind
@@ -57,11 +59,12 @@ def transitions(pair, flanks: tuple, ref, opts, br: Branches) -> tuple[list, lis
     frac = np.clip(frac, 0.0, 1.0)
     t_phi = lo + frac * (hi - lo)
     t_te = np.where(np.isfinite(ga), cand[idx, ka] + frac * (cand[idx + 1, ka] - cand[idx, ka]), np.nan)
+    exact_ok = exact
     exact = np.zeros(n, bool)
     for q in range(n):
         i = idx[q]
         exact[q] = all(kind_c[i + di, col] == ContactKind.SURFACE for di in (0, 1) for col in (ka[q], kb[q]))
-    if not exact.any():
+    if not (exact_ok and exact.any()):
         return t_phi.tolist(), t_te.tolist()
     sel = np.flatnonzero(exact)
     # reference-grid indices bracketing each pair's position (guesses by linear interpolation)

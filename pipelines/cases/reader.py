@@ -17,7 +17,7 @@ A gear table (``[gears.<name>]``)::
     parabola_drive_per_mm = 0.008    # a_c of the driving (+y) flank's rack, Eq. (1.5)
     parabola_coast_per_mm = 0.005    # a_c of the coast (-y) flank's rack
     parabola_apex_mm = 0.0           # apex of the rack parabola from the pitch point
-    runout_um = 0.0                  # eccentricity of the toothed body, Eqs. (3.5)-(3.6)
+    runout_um = 0.0                  # eccentricity of the toothed body, Eqs. (3.5)-(3.6); <= 0.1 module
     runout_phase_deg = 0.0
     [gears.<name>.plunge]            # longitudinal crowning by a plunging disk, Eq. (1.6)
     disk_radius_mm = 100.0
@@ -43,18 +43,50 @@ from tca.units import ARCMIN
 
 from pipelines.cases.schema import Table
 
-__all__ = ["load_case", "read_gear", "read_gears", "read_pair", "read_misalignment", "read_tca_options", "CASES_DIR"]
+__all__ = ["load_case", "parse_case_text", "MAX_CASE_BYTES", "read_gear", "read_gears", "read_pair", "read_misalignment", "read_tca_options", "CASES_DIR"]
 
 CASES_DIR = Path(__file__).parent  # the shipped case files sit beside this module
 
 
+MAX_CASE_BYTES = 1 << 20  # a case file is a few kB; anything above 1 MiB is not a case file
+
+
 def load_case(path: str | Path) -> Table:
-    """Parse a TOML case file into a strict :class:`Table`."""
+    """Parse a TOML case file (UTF-8, an optional UTF-8 byte-order mark is skipped) into a strict :class:`Table`.
+
+    Every failure (missing, unreadable, too large, not UTF-8, not TOML) is an
+    :class:`~tca.errors.InputError` naming the file.
+    """
     path = Path(path)
-    if not path.is_file():
-        raise InputError("CASE", str(path), "an existing TOML file")
-    with open(path, "rb") as fh:
-        return Table(tomllib.load(fh), "")
+    name = str(path)
+    try:
+        if not path.is_file():
+            raise InputError("CASE", name, "an existing TOML file")
+        if path.stat().st_size > MAX_CASE_BYTES:
+            raise InputError("CASE", name, f"a TOML case file of at most {MAX_CASE_BYTES} bytes",
+                             f"{path.stat().st_size} bytes")
+        raw = path.read_bytes()
+    except OSError as e:
+        raise InputError("CASE", name, "a readable TOML file", e.strerror or type(e).__name__) from None
+    return Table(parse_case_text(raw, name), "")
+
+
+def parse_case_text(raw: bytes, name: str = "CASE") -> dict:
+    """TOML bytes -> dict, with encoding and syntax errors as one-line InputErrors naming `name`."""
+    if raw.startswith(b"\xef\xbb\xbf"):  # UTF-8 byte-order mark (Windows editors): accepted and skipped
+        raw = raw[3:]
+    if raw.startswith((b"\xff\xfe", b"\xfe\xff")) or (len(raw) > 1 and b"\x00" in raw[:2]):
+        raise InputError("CASE", name, "a UTF-8 text file", "it is UTF-16: save it as UTF-8")
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as e:
+        line = raw[:e.start].count(b"\n") + 1
+        raise InputError("CASE", name, "a UTF-8 text file",
+                         f"byte 0x{raw[e.start]:02x} on line {line} is not UTF-8: save the file as UTF-8") from None
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        raise InputError("CASE", name, "a TOML file", f"TOML syntax: {e}") from None
 
 
 def read_gear(t: Table, name: str) -> Gear:
@@ -86,7 +118,7 @@ def read_gear(t: Table, name: str) -> Gear:
             parabola_neg=t.get("parabola_coast_per_mm", float, 0.0, lo=0.0, hi=0.5, hi_open=True),
             parabola_apex=t.get("parabola_apex_mm", float, 0.0, lo=-50.0, hi=50.0),
             plunge=plunge,
-            runout=t.get("runout_um", float, 0.0, lo=0.0, hi=5000.0) * 1e-3,
+            runout=t.get("runout_um", float, 0.0, lo=0.0, hi=1000.0) * 1e-3,
             runout_phase=math.radians(t.get("runout_phase_deg", float, 0.0)),
         )
     except InputError as e:  # name the key as it appears in the case file

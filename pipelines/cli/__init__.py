@@ -1,19 +1,44 @@
 """The ``gearfe`` command line: one module per subcommand, each with ``add_args`` and ``handle``.
 
-Any :class:`tca.errors.GearfeError` (bad input, impossible geometry, a solve that does not
-converge) is printed as one line on stderr and gives exit status 2, with no result files written.
+The error contract (docs/errors.md):
+
+* any :class:`tca.errors.GearfeError` (bad input, impossible geometry, a solve that does not
+  converge, a model too large for the machine) is printed as one line on stderr and gives exit
+  status 2, with no result files written; ``--out`` is checked before any work
+  (:func:`pipelines.cli.outdir.check_out`), ``--force`` allows a non-empty folder;
+* SIGINT (Ctrl-C) and SIGTERM (``timeout``, batch schedulers) stop the run with one line and exit
+  status 130 / 143; staged output folders are removed on the way out (sweeps keep their finished
+  points and resume);
+* an unexpected exception (a bug) is one line naming its type and exit status 70; set
+  ``GEARFE_TRACEBACK=1`` to see the traceback.
 """
 
 from __future__ import annotations
 
 import argparse
 import importlib
+import os
+import signal
 import sys
-import tomllib
 
 from tca.errors import GearfeError
 
-__all__ = ["main", "SUBCOMMANDS"]
+__all__ = ["main", "SUBCOMMANDS", "Terminated", "EXIT_INPUT", "EXIT_BUG", "EXIT_SIGINT", "EXIT_SIGTERM"]
+
+EXIT_INPUT = 2  # bad input, impossible geometry, a failed solve, a model too large
+EXIT_BUG = 70  # an unexpected exception (EX_SOFTWARE)
+EXIT_SIGINT = 130  # 128 + SIGINT
+EXIT_SIGTERM = 143  # 128 + SIGTERM
+# subcommands whose output folder may be reused without --force when it holds this marker (resume)
+RESUMABLE = {"sweep": "sweep.json"}
+
+
+class Terminated(BaseException):
+    """Raised in the main thread on SIGTERM, so that staged output is cleaned up like on Ctrl-C."""
+
+
+def _on_sigterm(signum, frame):
+    raise Terminated()
 
 # subcommand name -> module in pipelines implementing add_args(parser) and handle(args) -> int
 SUBCOMMANDS = {
@@ -36,6 +61,9 @@ def build_parser() -> argparse.ArgumentParser:
         mod = importlib.import_module(modname)
         p = sub.add_parser(name, help=mod.__doc__.strip().splitlines()[0], description=mod.__doc__)
         mod.add_args(p)
+        if any(a.dest == "out" for a in p._actions):
+            p.add_argument("--force", action="store_true",
+                           help="write into an existing, non-empty --out folder (same-named files are replaced)")
         p.set_defaults(_handler=mod.handle)
     return parser
 
@@ -43,11 +71,40 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
+    where = f"gearfe {args.command}"
+    old = None
     try:
+        old = signal.signal(signal.SIGTERM, _on_sigterm)
+    except ValueError:  # not the main thread (e.g. called from a worker): default handling
+        pass
+    try:
+        if hasattr(args, "out"):
+            from pipelines.cli.outdir import check_out
+
+            check_out(args.out, getattr(args, "force", False), RESUMABLE.get(args.command))
         return int(args._handler(args) or 0)
-    except (GearfeError, tomllib.TOMLDecodeError, FileNotFoundError) as exc:
-        print(f"gearfe {args.command}: error: {exc}", file=sys.stderr)
-        return 2
+    except GearfeError as exc:
+        print(f"{where}: error: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_INPUT
+    except KeyboardInterrupt:
+        print(f"{where}: interrupted (SIGINT); no partial results left", file=sys.stderr)
+        return EXIT_SIGINT
+    except Terminated:
+        print(f"{where}: terminated (SIGTERM); no partial results left", file=sys.stderr)
+        return EXIT_SIGTERM
+    except Exception as exc:  # a bug: one line, distinct status, traceback on request
+        if os.environ.get("GEARFE_TRACEBACK"):
+            raise
+        print(f"{where}: internal error: {type(exc).__name__}: {_one_line(exc)} (a bug: please report it with "
+              "the case file; GEARFE_TRACEBACK=1 shows the traceback)", file=sys.stderr)
+        return EXIT_BUG
+    finally:
+        if old is not None:
+            signal.signal(signal.SIGTERM, old)
+
+
+def _one_line(exc: BaseException) -> str:
+    return " ".join(str(exc).split())
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -25,6 +25,7 @@ from __future__ import annotations
 import argparse
 import json
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -36,7 +37,7 @@ from pipelines.cli.tca import to_json
 from pipelines.cli.outdir import staged_output
 from pipelines.cases.schema import Table
 
-__all__ = ["add_args", "handle", "read_mesh_options", "build"]
+__all__ = ["add_args", "handle", "read_mesh_options", "read_mesh_case", "build", "build_inputs", "MeshInputs"]
 
 
 def add_args(p: argparse.ArgumentParser) -> None:
@@ -81,10 +82,22 @@ def _pair_source(case: Table, path: Path) -> Table:
     raise InputError("pair_case", ref, f"a pair case file in {path.parent} or {CASES_DIR}")
 
 
-def build(case: Table, path: Path):
-    """(HexMesh, summary extras) of a mesh case."""
-    from mesher import mesh_gear, mesh_pair
+@dataclass(frozen=True)
+class MeshInputs:
+    """A mesh case read in full (every key checked) before any meshing."""
 
+    options: object  # mesher.MeshOptions
+    element_type: str
+    gear: object = None  # tca.gear.Gear when one gear is meshed
+    pair: object = None  # tca.pair.GearPair otherwise
+    driver: str = ""
+    driven: str = ""
+    position: object = "max_te"
+    tca_options: object = None
+
+
+def read_mesh_case(case: Table, path: Path) -> MeshInputs:
+    """Read and check every key of a mesh case (unknown keys included) without meshing."""
     case.get("title", str, "")
     gear_name = case.get("gear", str, None)
     src = _pair_source(case, path)
@@ -96,8 +109,8 @@ def build(case: Table, path: Path):
         for k in ("driver", "driven", "center_distance_mm", "misalignment", "tca", "position"):
             if case.has(k):
                 raise InputError(k, case.data[k], "no pair keys in a case that meshes one gear (gear = ...)")
-        mesh = mesh_gear(gears[gear_name], opts)
-        return mesh, {"gear": gear_name}, et
+        case.done()
+        return MeshInputs(opts, et, gear=gears[gear_name])
     pair, driver, driven = read_pair(src, gears)
     tca_opts = read_tca_options(src.table("tca", required=False))
     if case.has("position") and isinstance(case.data["position"], int) and not isinstance(case.data["position"], bool):
@@ -106,11 +119,26 @@ def build(case: Table, path: Path):
         pos = case.get("position", str, "max_te", choices=("max_te", "min_te"))
     if src is not case:
         src.done()
-    pm = mesh_pair(pair, pos, opts, tca_options=tca_opts)
+    case.done()
+    return MeshInputs(opts, et, pair=pair, driver=driver, driven=driven, position=pos, tca_options=tca_opts)
+
+
+def build(case: Table, path: Path):
+    """(HexMesh, summary extras, element type) of a mesh case."""
+    return build_inputs(read_mesh_case(case, path))
+
+
+def build_inputs(inp: MeshInputs):
+    """(HexMesh, summary extras, element type) of a mesh case already read."""
+    from mesher import mesh_gear, mesh_pair
+
+    if inp.gear is not None:
+        return mesh_gear(inp.gear, inp.options), {"gear": inp.gear.name}, inp.element_type
+    pm = mesh_pair(inp.pair, inp.position, inp.options, tca_options=inp.tca_options)
     p = pm.mesh.meta["position"]
-    extra = {"driver": driver, "driven": driven, "position": p, "contact_node_gap_mm": pm.contact_node_gap,
+    extra = {"driver": inp.driver, "driven": inp.driven, "position": p, "contact_node_gap_mm": pm.contact_node_gap,
              "contact_pairs": [list(x) for x in pm.mesh.contact_pairs]}
-    return pm.mesh, extra, et
+    return pm.mesh, extra, inp.element_type
 
 
 def handle(args) -> int:
@@ -119,11 +147,10 @@ def handle(args) -> int:
     t0 = time.perf_counter()
     c0 = time.process_time()
     path = Path(args.case)
-    case = load_case(path)
+    inputs = read_mesh_case(load_case(path), path)  # every key checked before any work
     with staged_output(args.out) as tmp:
         tmp = Path(tmp)
-        mesh, extra, et = build(case, path)
-        case.done()
+        mesh, extra, et = build_inputs(inputs)
         t_mesh = time.perf_counter() - t0
         q = check_quality(mesh)
         conf = check_conformity(mesh)

@@ -15,9 +15,12 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
 import sys
 import time
 from pathlib import Path
+
+from tca.errors import InputError
 
 from pipelines.cases.reader import load_case
 from pipelines.cli.outdir import staged_output
@@ -54,8 +57,15 @@ def read_with_overrides(path, args) -> StressCase:
         data["phi1_deg"] = args.phi1_deg
     if args.position is not None:
         data.pop("phi1_deg", None)
-        data["position"] = int(args.position) if args.position.lstrip("-").isdigit() else args.position
+        if re.fullmatch(r"-?[0-9]{1,9}", args.position):
+            data["position"] = int(args.position)
+        elif args.position in ("max_te", "min_te"):
+            data["position"] = args.position
+        else:
+            raise InputError("--position", args.position, "'max_te', 'min_te' or an integer index of the TCA grid")
     if args.refine is not None:
+        if not isinstance(data.get("mesh", {}), dict):
+            raise InputError("mesh", data["mesh"], "a table [mesh] (--refine sets mesh.refine)")
         data["mesh"] = {**data.get("mesh", {}), "refine": args.refine}
     return read_stress_case(Table(data, ""))
 

@@ -33,7 +33,9 @@ The positions are the innermost axis. A stress sweep over two or more positions 
 body, vs φ1) and ``DIR/load_share.png`` (share of the contact force of each modelled tooth pair vs
 φ1), one curve per combination of the other axes.
 
-Every grid point is validated before anything runs (a bad key or value: exit status 2, no files).
+Every grid point is validated before anything runs (a bad key or value: exit status 2, no files,
+the error names the grid point); a grid has at most ``MAX_GRID_POINTS`` (10^5) points, and
+``--scheduler`` is probed (TCP, 3 s) before anything else.
 Each point runs in ``DIR/cases/<id>/`` (written under a temporary name and renamed when finished),
 so an interrupted sweep resumes where it stopped and never leaves a half-written case; finished
 points are not recomputed. ``DIR/results.csv`` gathers the axes and the scalar results of all
@@ -53,6 +55,9 @@ import hashlib
 import io
 import itertools
 import json
+import math
+import socket
+import urllib.parse
 import os
 import shutil
 import sys
@@ -63,14 +68,16 @@ from pathlib import Path
 from tca.errors import GearfeError, InputError
 
 from pipelines.cases.reader import load_case
+from pipelines.cases.validate import validate_case
 from pipelines.cli.outdir import atomic_write_text
 from pipelines.cases.schema import Table
 from pipelines.stress.sweep import POSITION_KEYS, STEP_KEY, apply_position, expand_positions, plot_cycle, stress_scalars
 from pipelines.stress.sweep import run_point_stress, validate_stress
 
-__all__ = ["add_args", "handle", "build_grid", "run_point", "TASKS"]
+__all__ = ["add_args", "handle", "build_grid", "run_point", "check_scheduler", "TASKS", "MAX_GRID_POINTS"]
 
 TASKS = ("tca", "stress")
+MAX_GRID_POINTS = 100_000  # grid points of one sweep (each is validated before any runs)
 
 
 def add_args(p: argparse.ArgumentParser) -> None:
@@ -129,6 +136,10 @@ def build_grid(sweep_path: str | Path) -> tuple[str, list[dict], list[str]]:
     if not keys:
         raise InputError("axes", [], "at least one [[axes]] table or a [positions] table")
     t.done()
+    size = math.prod(len(v) for v in values)
+    if size > MAX_GRID_POINTS:
+        raise InputError("axes", " x ".join(str(len(v)) for v in values),
+                         f"a grid of at most {MAX_GRID_POINTS} points (the product of the axes' lengths is {size})")
     points = []
     for combo in itertools.product(*values):
         named = dict(zip(keys, combo))
@@ -149,15 +160,17 @@ def build_grid(sweep_path: str | Path) -> tuple[str, list[dict], list[str]]:
 
 def _validate(task: str, point: dict) -> None:
     """Parse a grid point fully (readers only, no solve), raising InputError/GeometryError early."""
-    from pipelines.cases.reader import read_gears, read_misalignment, read_tca_options
-
-    tab = Table(copy.deepcopy(point["case"]), "")
-    if task == "tca":
-        read_gears(tab)
-        read_misalignment(tab.table("misalignment", required=False))
-        read_tca_options(tab.table("tca", required=False))
-    elif task == "stress":
-        validate_stress(point["case"])
+    try:
+        if task == "tca":
+            validate_case(Table(point["case"], ""))
+        elif task == "stress":
+            validate_stress(point["case"])
+    except InputError as e:  # name the grid point the error belongs to
+        where = ", ".join(f"{k} = {v!r}" for k, v in point["values"].items())
+        raise InputError(e.field, e.value, e.valid, f"grid point {where}") from None
+    except GearfeError as e:
+        where = ", ".join(f"{k} = {v!r}" for k, v in point["values"].items())
+        raise InputError("axes", where, "a valid case at every grid point", str(e)) from None
 
 
 def run_point(task: str, point: dict, out_dir: str) -> dict:
@@ -201,13 +214,36 @@ def _progress(done: int, total: int, t0: float) -> None:
     sys.stderr.flush()
 
 
+SCHEDULER_TIMEOUT_S = 3.0  # connection probe of --scheduler before any work
+
+
+def check_scheduler(address: str) -> None:
+    """Fail fast (InputError on --scheduler) when the Dask scheduler's TCP address cannot be reached."""
+    url = urllib.parse.urlparse(address if "://" in address else f"tcp://{address}")
+    try:
+        host, port = url.hostname, url.port
+    except ValueError:
+        host, port = None, None
+    if url.scheme not in ("tcp", "tls") or not host or not port:
+        raise InputError("--scheduler", address, "a Dask scheduler address tcp://HOST:PORT")
+    try:
+        with socket.create_connection((host, port), timeout=SCHEDULER_TIMEOUT_S):
+            pass
+    except OSError as e:
+        raise InputError("--scheduler", address, "a reachable Dask scheduler",
+                         f"{e.strerror or type(e).__name__} within {SCHEDULER_TIMEOUT_S:g} s") from None
+
+
 def _run_dask(task: str, points: list[dict], out: Path, args, t0: float) -> list[dict]:
     """Run the points as Dask tasks (local cluster or --scheduler); rows in completion order."""
     from dask.distributed import Client, LocalCluster, as_completed
 
     cluster = None
     if args.scheduler:
-        client = Client(args.scheduler)
+        try:  # a port that answers but is not a Dask scheduler: fail after 30 s, in one line
+            client = Client(args.scheduler, timeout=f"{10 * SCHEDULER_TIMEOUT_S:g}s")
+        except (OSError, TimeoutError) as e:
+            raise InputError("--scheduler", args.scheduler, "a Dask scheduler", f"{type(e).__name__}: {e}") from None
     else:
         n = args.workers or os.cpu_count() or 1
         cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None)
@@ -230,9 +266,17 @@ def _run_dask(task: str, points: list[dict], out: Path, args, t0: float) -> list
 def handle(args) -> int:
     if args.workers is not None and args.workers < 0:
         raise InputError("--workers", args.workers, "an integer >= 0 (0: in this process)")
+    if args.scheduler:
+        check_scheduler(args.scheduler)
     task, points, keys = build_grid(args.sweep)
-    for p in points:  # all inputs checked before any work
+    t0 = time.perf_counter()
+    for i, p in enumerate(points, 1):  # all inputs checked before any work
         _validate(task, p)
+        if len(points) >= 200 and (i % 100 == 0 or i == len(points)):
+            sys.stderr.write(f"\rvalidating grid points: {i}/{len(points)} ")
+            sys.stderr.flush()
+    if len(points) >= 200:
+        sys.stderr.write(f"({time.perf_counter() - t0:.1f} s)\n")
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     for stale in (out / "cases").glob(".*.tmp-*"):  # left by a killed run: never a result

@@ -16,6 +16,7 @@ from pathlib import Path
 from tca.errors import InputError
 
 from pipelines.cases.reader import load_case
+from pipelines.cases.validate import validate_case
 from pipelines.cli.outdir import staged_output
 
 __all__ = ["add_args", "handle", "run_case", "to_json", "KINDS"]
@@ -49,6 +50,7 @@ def run_case(case, out: Path, label: str = "") -> dict:
 
 def handle(args) -> int:
     case = load_case(args.case)
+    validate_case(case)  # every key, range and geometry check before any work
     with staged_output(args.out) as tmp:
         summary = run_case(case, Path(tmp), str(args.case))
     _print_summary(summary, args.out)

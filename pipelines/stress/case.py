@@ -96,11 +96,26 @@ def _read_mesh(t: Table | None) -> SizeRules:
     return r
 
 
+E_RANGE_MPA = (1e3, 1e6)  # engineering gear materials: polymers (~2e3 MPa) to carbides (~6e5 MPa)
+
+
+def _youngs(t: Table) -> float:
+    """Young's modulus [MPa], refused outside E_RANGE_MPA with a hint at the unit (GPa, Pa)."""
+    e = t.get("youngs_modulus_mpa", float, 2.068e5, lo=0.0, lo_open=True)
+    lo, hi = E_RANGE_MPA
+    if not lo <= e <= hi:
+        hint = (f"{e:g} looks like GPa: {e * 1e3:g} MPa?" if 0.1 <= e < lo else
+                f"{e:g} looks like Pa: {e * 1e-6:g} MPa?" if 1e8 <= e <= 1e13 else "not a plausible stiffness")
+        raise InputError(t._key("youngs_modulus_mpa"), e, f"a Young's modulus in MPa in [{lo:g}, {hi:g}] (steel 2.068e5)",
+                         hint)
+    return e
+
+
 def _read_fe(t: Table | None) -> FESettings:
     if t is None:
         return FESettings()
     f = FESettings(
-        E=t.get("youngs_modulus_mpa", float, 2.068e5, lo=0.0, lo_open=True),
+        E=_youngs(t),
         nu=t.get("poisson_ratio", float, 0.29, lo=-1.0, hi=0.5, lo_open=True, hi_open=True),
         element=t.get("element", str, "C3D8I", choices=("C3D8I", "C3D8")),
         solver=t.get("solver", str, "auto", choices=("auto", "pardiso", "superlu")),
@@ -146,6 +161,10 @@ def read_stress_case(case: Table) -> StressCase:
             if case.has(k):
                 raise InputError(k, case.data[k], "no planetary-train keys in a 'pair' case")
         pair, _, _ = read_pair(case, read_gears(case))
+        for g in (pair.gear1, pair.gear2):
+            if g.runout > 0:  # the FE scene places a periodic pair (tca.planetary_mesh.MeshTE): refuse, not ignore
+                raise InputError(f"gears.{g.name}.runout_um", g.runout * 1e3, "0 in a stress case (run-out is analysed "
+                                 "by gearfe tca; the FE model places the teeth of a pair without it)")
         out = StressCase("pair", torque, title, pair=pair, position=pos, phi1=phi1, tca=tca, mesh=mesh, fe=fe)
     else:
         for k in ("driver", "driven", "center_distance_mm", "misalignment"):

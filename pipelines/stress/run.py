@@ -74,7 +74,7 @@ from tca.planetary_mesh import phi1_grid, run_subgear_tca
 from tca.planetary_regulation import nominal_peak, regulate_member, twin_te
 
 from pipelines.stress.case import StressCase
-from pipelines.stress.model import mesh_scene, solve_scene
+from pipelines.stress.model import check_resources, mesh_scene, solve_scene
 from pipelines.stress.results import member_teeth, summarize
 from pipelines.stress.scene import pair_scene, twin_scene
 
@@ -183,6 +183,31 @@ def _warnings(scene, approach: float, interfaces: dict) -> list[str]:
     return out
 
 
+TORQUE_BALANCE_LIMIT = 1e-2  # relative error of the reaction torque above which the result is flagged
+FORCE_RATIO_RANGE = (0.5, 2.0)  # contact force / (T / (r_b cos beta_b)) outside this: flagged
+
+
+def plausibility_warnings(case: StressCase, s: dict) -> list[str]:
+    r"""Checks of a solved case against statics: the reaction torque balances T, and (pair model) the
+    normal contact force is near the nominal :math:`F_n = T / (r_{b2}\cos\beta_b)` of the driven gear
+    (load shared by up to two pairs of teeth, so a factor of two either way is plausible)."""
+    out = []
+    tb = s.get("torque_balance_error")
+    if not (isinstance(tb, float) and tb <= TORQUE_BALANCE_LIMIT):
+        out.append(f"torque balance error {tb:.3g} > {TORQUE_BALANCE_LIMIT:g}: the reaction torque does not balance "
+                   f"the applied {case.torque * 1e-3:g} N m (check the elastic constants, the penalty and the mesh)")
+    if case.model == "pair":
+        g = case.pair.gear2
+        beta_b = math.atan(math.tan(g.beta_ref) * math.cos(g.transverse_pressure_angle))
+        nominal = case.torque / (g.r_b * math.cos(beta_b))
+        f = s.get("contact_force_n")
+        lo, hi = FORCE_RATIO_RANGE
+        if not (isinstance(f, float) and lo * nominal <= f <= hi * nominal):
+            out.append(f"contact force {f:.4g} N is far from the nominal T / (r_b2 cos beta_b) = {nominal:.4g} N "
+                       f"(ratio outside [{lo:g}, {hi:g}])")
+    return out
+
+
 def run_stress(case: StressCase, out: Path, progress=None, artefacts: dict | None = None) -> dict:
     """TCA, mesh, contact solve and results of a case; writes ``out/result.vtu`` and returns the summary.
 
@@ -202,6 +227,8 @@ def run_stress(case: StressCase, out: Path, progress=None, artefacts: dict | Non
     t_tca = time.perf_counter() - t0
     pos = scene.info
     say(f"tca: done in {t_tca:.1f} s (phi1 = {pos['phi1_deg']:.4f} deg)")
+    est = check_resources(scene, case.mesh)  # refuses a model beyond the memory limit, before meshing
+    say(f"mesh: estimated {est.elements} elements, {est.dofs} DOF, {est.memory_gb:.2g} GB")
     t1 = time.perf_counter()
     mesh = mesh_scene(scene)
     t_mesh = time.perf_counter() - t1
@@ -221,7 +248,7 @@ def run_stress(case: StressCase, out: Path, progress=None, artefacts: dict | Non
     t_res = time.perf_counter() - t1
     say(f"results: max von Mises {s['max_von_mises_mpa']:.1f} MPa, max contact pressure {s['max_contact_pressure_mpa']:.1f} MPa, "
         f"torque balance error {s['torque_balance_error']:.2e}")
-    warnings = _warnings(scene, case.tca.elastic_approach, s["interfaces"])
+    warnings = _warnings(scene, case.tca.elastic_approach, s["interfaces"]) + plausibility_warnings(case, s)
     for w in warnings:
         say("warning: " + w)
     summary = {
