@@ -27,8 +27,10 @@ Case file (TOML, ``kind = "stress"``)::
     model = "twin"                # or "pair"
     title = "..."
     torque_nm = 500.0             # T: on the ring (twin) or the driven gear (pair), resisting
-    position = "max_te"           # "max_te", "min_te" or an index of the TCA grid; or instead:
-    # phi1_deg = 12.3             # the driving gear's angle
+    position = "max_te"           # "max_te", "min_te" or an index of the TCA grid; pair model also
+                                  # "pitch", "hpstc", "lpstc" (tca.pair_te: on the path of contact);
+    # phi1_deg = 12.3             # or instead the driving gear's angle,
+    # roll_deg = 25.0             # or (pair model) the driver's roll angle of the contact at mid-face
     # pair: driver = "sun", driven = "planet", [gears.*], [misalignment], center_distance_mm
     # twin: planets = 5, member_gap_mm = 10.0, [gears.sun], [gears.planet], [gears.ring] (members a)
     [shaft]                       # twin: errors of the modelled planet shaft
@@ -70,6 +72,7 @@ import numpy as np
 
 from tca.errors import InputError
 from tca.pair_tca import ARCSEC, run_pair_tca
+from tca.pair_te import grid_index, position_angle
 from tca.planetary_mesh import phi1_grid, run_subgear_tca
 from tca.planetary_regulation import nominal_peak, regulate_member, twin_te
 
@@ -79,18 +82,6 @@ from pipelines.stress.results import member_teeth, summarize
 from pipelines.stress.scene import pair_scene, twin_scene
 
 __all__ = ["run_stress", "build_scene"]
-
-
-def _pick(te: np.ndarray, position) -> int:
-    n = len(te)
-    if position == "max_te":
-        return int(np.argmax(te[:-1] if n > 1 else te))
-    if position == "min_te":
-        return int(np.argmin(te[:-1] if n > 1 else te))
-    if not -n <= position < n:
-        raise InputError("position", position, f"an integer index in [{-n}, {n - 1}] (negative: from the end), "
-                         "'max_te' or 'min_te'")
-    return int(position) % n
 
 
 def _regulation(case: StressCase, cache: dict, progress) -> tuple[tuple, dict]:
@@ -123,7 +114,7 @@ def _build(case: StressCase, progress=None):
     E, nu = case.fe.E, case.fe.nu
     if case.model == "pair":
         r = run_pair_tca(case.pair, case.tca)
-        phi1 = float(r.phi1[_pick(r.te, case.position)]) if case.phi1 is None else case.phi1
+        phi1 = position_angle(r, case.position, case.phi1, case.roll)
         scene = pair_scene(case.pair, r, phi1, case.torque, case.mesh, E, nu)
         rec = {"te_peak_to_peak_arcsec": r.te_peak_to_peak_arcsec, "edge_contact": r.edge_contact,
                "elapsed_s": r.elapsed}
@@ -131,7 +122,7 @@ def _build(case: StressCase, progress=None):
     cache: dict = {}
     dz, reg = _regulation(case, cache, progress)
     tw = twin_te(case.train, 0, case.errors, dz, case.tca, cache)
-    phi1 = float(tw.phi1[_pick(tw.te, case.position)]) if case.phi1 is None else case.phi1
+    phi1 = float(tw.phi1[grid_index(tw.te, case.position)]) if case.phi1 is None else case.phi1
     grid = phi1_grid(case.train, case.tca)
     subs = {k: run_subgear_tca(case.train, 0, k, case.errors, dz[0 if k == "a" else 1], case.tca, np.array([phi1]), cache)
             for k in ("a", "b")}
