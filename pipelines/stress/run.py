@@ -72,6 +72,7 @@ import numpy as np
 
 from tca.errors import InputError
 from tca.pair_tca import ARCSEC, run_pair_tca
+from tca.iso6336 import tooth_root
 from tca.pair_te import grid_index, position_angle
 from tca.planetary_mesh import phi1_grid, run_subgear_tca
 from tca.planetary_regulation import nominal_peak, regulate_member, twin_te
@@ -174,6 +175,23 @@ def _warnings(scene, approach: float, interfaces: dict) -> list[str]:
     return out
 
 
+def _iso6336(case: StressCase) -> dict:
+    """Pair model: ISO 6336-3 method B nominal root stress σ_F0 of both gears beside the FE fillet stress.
+
+    σ_F0 assumes the whole load on one tooth at the HPSTC (no load factors); the FE fillet stress equals it only
+    where the model does too (``position = "hpstc"``, ``mesh.teeth = 1``). Internal gears and modified racks:
+    None.
+    """
+    if case.model != "pair":
+        return {}
+    try:
+        rec = tooth_root(case.pair, case.torque)
+    except InputError:
+        return {"iso6336_sigma_f0_mpa": None, "iso6336": None}
+    return {"iso6336_sigma_f0_mpa": {g.name: (rec[g.name] or {}).get("sigma_f0_mpa") for g in (case.pair.gear1, case.pair.gear2)},
+            "iso6336": rec}
+
+
 def run_stress(case: StressCase, out: Path, progress=None, artefacts: dict | None = None) -> dict:
     """TCA, mesh, contact solve and results of a case; writes ``out/result.vtu`` and returns the summary.
 
@@ -212,12 +230,14 @@ def run_stress(case: StressCase, out: Path, progress=None, artefacts: dict | Non
     t_res = time.perf_counter() - t1
     say(f"results: max von Mises {s['max_von_mises_mpa']:.1f} MPa, max contact pressure {s['max_contact_pressure_mpa']:.1f} MPa, "
         f"torque balance error {s['torque_balance_error']:.2e}")
+    iso = _iso6336(case)
     warnings = _warnings(scene, case.tca.elastic_approach, s["interfaces"])
     for w in warnings:
         say("warning: " + w)
     summary = {
         "model": case.model, "title": case.title, "torque_nm": case.torque * 1e-3,
         **s,
+        **iso,
         "warnings": warnings,
         "position": pos, "tca": tca_rec,
         "tca_s": t_tca, "mesh_s": t_mesh, "solve_s": t_solve, "results_s": t_res,
