@@ -230,13 +230,14 @@ def mesh_contact(result: PairTCAResult, phi: float) -> MeshContact:
                             f"has no reference contact at phi = {math.degrees(phi):.6f} deg")
     _, te, q, i0, w, exact = max(cands)
     k = int(ks[q])
-    # the next pair: the largest other branch whose reference pair touches (tangency-only branches of the
-    # extended surfaces are upper bounds of pairs out of their working areas, not contacts)
+    # the next pair: the largest other branch (a tangency of the extended surfaces is an upper bound of that
+    # pair's TE, so the gap is a lower bound), except tangency-only branches tied with this one: the extended
+    # surfaces of conjugate flanks touch outside the working areas, which says nothing of the real gap
     te_next = -math.inf
     for j in range(len(ks)):
         if j != q and math.isfinite(val[j]):
             i0j, wj, _ = _grid_place(ref, phi, int(ks[j]), p1)
-            if _usable(ok, i0j, wj):
+            if _usable(ok, i0j, wj) or j not in tied:
                 te_next = max(te_next, float(val[j]))
     if w > 0:
         x = (1 - w) * ref.x[i0] + w * ref.x[i0 + 1]
