@@ -86,10 +86,11 @@ def main(argv=None) -> int:
         cc = _case(roll=t / path.r_b1, position="max_te", refine=0.5)
         s = run_stress(cc, out / "cycle")
         sh = s["load_share"]["pinion-wheel"]["teeth"]
+        off = {n: d["offset"] for n, d in s["interfaces"]["pinion-wheel"]["teeth"].items()}
         zone = "single" if path.t_b < t < path.t_d else "double"
         lt = loaded_te(cc, s)
         L.append(f"| {math.degrees(t / path.r_b1):.3f} | {s['position']['phi1_deg']:.3f} | {zone} | "
-                 + ", ".join(f"{v:.3f}" for _, v in sorted(sh.items())) + f" | {lt['loaded_te_arcsec']:.2f} |")
+                 + ", ".join(f"{v:.3f}" for _, v in sorted((off[n], v) for n, v in sh.items())) + f" | {lt['loaded_te_arcsec']:.2f} |")
     (out / "standard.md").write_text("\n".join(L) + "\n")
     print("\n".join(L))
     return 0

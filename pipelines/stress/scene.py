@@ -5,13 +5,8 @@ tooth, placed in :math:`S_f` — the meshing interfaces between them and the sup
 (Fig. 1.7). It is built from tooth contact analysis only; :func:`pipelines.stress.run.run_stress`
 meshes and solves it.
 
-Contact at an angle (:func:`mesh_contact`). A pair TCA (:func:`tca.pair_tca.run_pair_tca`) gives the
-reference pair of teeth on a grid of :math:`\phi_1`; at an angle :math:`\phi` the pair in contact
-is the branch :math:`k` with the largest :math:`\Delta\phi_2` (:class:`tca.planetary_mesh.MeshTE`), i.e.
-tooth :math:`-k \bmod N` of each gear, and :math:`\phi_2 = (N_1/N_2)\phi + \Delta\phi_2`. On the grid
-the TCA solution is used as it is (the two contact nodes coincide to the TCA residual); between
-grid points the reference solution is interpolated linearly (an initial gap of the order of
-:math:`h^2 \max|\Delta\phi_2''|\,r/8`, a few 1e-5 mm, far below the elastic approach).
+Contact at an angle: :func:`tca.pair_te.mesh_contact` (the one home of a pair's TE and contact at
+any angle, with the ties of conjugate flanks resolved; re-exported here).
 
 Models.
 
@@ -42,8 +37,11 @@ elliptical contact (Johnson, Contact Mechanics, eqs. 4.39–4.40; :math:`1/E^* =
     \frac{B}{A} = \frac{(a/b)^2 E(e) - K(e)}{K(e) - E(e)},\qquad
     a^3 = \frac{3P\,(K(e)-E(e))}{2\pi A E^* e^2},\qquad b = a\sqrt{1-e^2},\qquad p_0=\frac{3P}{2\pi ab},
 
-(line contact, :math:`\lambda_1 \approx 0`: :math:`b=\sqrt{4P'R/(\pi E^*)}`, :math:`R=1/\lambda_2`,
-:math:`P'=P/B_w`, :math:`a = B_w/2`) sizes the loaded flanks: profile size :math:`b/3`, axial size
+(line contact — aligned involute gears, or an ellipse longer than the contact line
+:math:`L = B/\cos\beta_b`, :func:`contact_length`: :math:`w = P/L`,
+:math:`b=\sqrt{4wR/(\pi E^*)} = \sqrt{8wR/(\pi E')}`, :math:`R=1/\lambda_2`, :math:`p_0 = 2w/(\pi b)`,
+:math:`a = L/2`, the major axis at the base helix angle :math:`\beta_b` from the axis, profile size
+:math:`b/4`) sizes the loaded flanks: profile size :math:`b/3`, axial size
 :math:`\min(a/6,\ b/(3|\sin\theta|))` (θ the major axis from the gear axis), kept over a zone of
 half-lengths 1.2 × the ellipse's extent before growing (:class:`mesher.Focus` extents); all sizes
 are divided by ``refine``. Edge and corner contacts (bounded surfaces) keep the profile size and
@@ -59,7 +57,7 @@ import numpy as np
 
 from mesher import Focus, ReferencePoint
 from mesher.body import model_teeth
-from tca.errors import GeometryError, InputError
+from tca.errors import InputError
 from tca.gear import Gear
 from tca.pair import GearPair
 from tca.pair_tca import ContactKind, PairTCAResult
@@ -71,7 +69,7 @@ from tca.units import ARCSEC
 
 from pipelines.stress.sizing import ContactSizes, HertzContact, SizeRules, contact_sizes, hertz_contact
 
-__all__ = ["MeshContact", "mesh_contact", "Part", "Interface",
+__all__ = ["MeshContact", "mesh_contact", "contact_length", "Part", "Interface",
            "Scene", "pair_scene", "twin_scene", "PHASES"]
 
 _SIDE = {1: "pos", -1: "neg"}
