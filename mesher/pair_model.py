@@ -31,6 +31,7 @@ import numpy as np
 from tca.errors import InputError
 from tca.pair import GearPair
 from tca.pair_tca import ContactKind, PairTCAResult, TCAOptions, run_pair_tca
+from tca.pair_te import grid_index
 
 from .body import Focus, MeshOptions, mesh_gear
 from .hexmesh import HexMesh, merge_meshes
@@ -75,17 +76,8 @@ def member_pair(pair: GearPair, c: float) -> GearPair:
 
 
 def choose_position(tca: PairTCAResult, position) -> int:
-    """Index of a TCA position: an integer index, 'max_te' or 'min_te'."""
-    n = len(tca.phi1)
-    if isinstance(position, str):
-        if position == "max_te":
-            return int(np.argmax(tca.te))
-        if position == "min_te":
-            return int(np.argmin(tca.te))
-        raise InputError("position", position, "an index, 'max_te' or 'min_te'")
-    if isinstance(position, bool) or not isinstance(position, (int, np.integer)) or not (-n <= position < n):
-        raise InputError("position", position, f"an integer index in [0, {n - 1}], 'max_te' or 'min_te'")
-    return int(position) % n
+    """Index of a TCA grid position: an integer index, 'max_te' or 'min_te' (:func:`tca.pair_te.grid_index`)."""
+    return grid_index(tca.te, position)
 
 
 def mesh_pair(pair: GearPair, position="max_te", opts1: MeshOptions = MeshOptions(),

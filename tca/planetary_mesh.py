@@ -29,7 +29,7 @@ zero for ideal involute gears at every planet: the remainder
 So :math:`\Delta\phi_3^{(i)}` compares all planets directly: the planet with the largest value is
 in mesh, the others have the backlash :math:`|M_jM_i|` (Fig. 1.4).
 
-Each mesh is solved over one cycle and used periodically (:class:`MeshTE`): the TE is the largest
+Each mesh is solved over one cycle and used periodically (:class:`tca.pair_te.MeshTE`): the TE is the largest
 of the reference pair's branch shifted by whole pitches. The sun mesh is read on its own grid
 (``steps_per_cycle`` a multiple of n puts :math:`\phi_1 - \theta_i` on it for every planet); the ring
 mesh is needed at :math:`\phi_2'`, between grid points, where each branch is interpolated linearly
@@ -51,7 +51,8 @@ import numpy as np
 
 from .errors import GeometryError, InputError
 from .pair import GearPair
-from .pair_tca import ARCSEC, PairTCAResult, TCAOptions, run_pair_tca
+from .pair_tca import ARCSEC, TCAOptions, run_pair_tca
+from .pair_te import MeshTE  # the one home of a pair's periodic TE; kept importable from here
 from .planetary import PlanetaryTrain, ShaftErrors
 from .transforms import Mount, rot_x, rot_y, rot_z
 
@@ -91,69 +92,6 @@ def subgear_pairs(train: PlanetaryTrain, i: int, member: str, errors: ShaftError
     p2 = GearPair(planet, ring, mount1=Mount(A2 @ (o - c_nom), Q2, 0.0),
                   mount2=Mount(np.array([-E, 0.0, 0.0]), np.eye(3), math.pi / ring.teeth))
     return p1, p2
-
-
-@dataclass(frozen=True, eq=False)
-class MeshTE:
-    """Periodic TE of one mesh, Δφ2(φ1) [rad]: the largest of the reference branch shifted by pitches."""
-
-    phi0: float  # first grid angle [rad]
-    h: float  # grid step [rad]
-    branch: np.ndarray  # Δφ on the grid, -inf where the reference pair is out of contact [rad]
-    kind: np.ndarray  # ContactKind on the grid
-    pitch: float  # angular pitch of the driving gear [rad]
-    result: PairTCAResult
-
-    @classmethod
-    def from_result(cls, r: PairTCAResult) -> "MeshTE":
-        """Branch of the reference pair, completed for interpolation near the changes of pair.
-
-        Where the pair TCA skipped the bounded-contact search because the pair's tangency (an upper
-        bound of its contact) lies below the other pairs, the tangency is kept: the branch stays below
-        the envelope there, and interpolation next to a change of pair keeps its O(h^2) accuracy.
-        """
-        ref = r.reference
-        ratio = r.pair.ratio
-        te = ref.phi2 - ratio * ref.phi1
-        h = (ref.phi1[-1] - ref.phi1[0]) / (len(ref.phi1) - 1)
-        pitch = 2 * math.pi / r.pair.gear1.teeth
-        bare = cls(float(ref.phi1[0]), float(h), te, ref.kind.copy(), pitch, r)
-        env = bare.branches(ref.phi1)[0].max(1)
-        tan = np.where(ref.tangency & ~ref.out_of_mesh, ref.x[:, 4] - ratio * ref.phi1, -np.inf)
-        keep = ~np.isfinite(te) & (tan <= env + 1e-12)
-        return cls(float(ref.phi1[0]), float(h), np.where(keep, tan, te), ref.kind.copy(), pitch, r)
-
-    def branches(self, phi) -> tuple[np.ndarray, np.ndarray]:
-        """Values (m, K) of the shifted branches at phi (m,) and their pair indices (K,)."""
-        phi = np.asarray(phi, float)
-        n = len(self.branch)
-        lo, hi = self.phi0, self.phi0 + (n - 1) * self.h
-        kmin = int(math.floor((phi.min() - hi) / self.pitch)) - 1
-        kmax = int(math.ceil((phi.max() - lo) / self.pitch)) + 1
-        ks = np.arange(kmin, kmax + 1)
-        t = (phi[:, None] - ks[None, :] * self.pitch - self.phi0) / self.h
-        tr = np.round(t)
-        t = np.where(np.abs(t - tr) < 1e-7, tr, t)  # on the grid: exact nodal values
-        i0 = np.floor(t).astype(int)
-        w = t - i0
-        ok0 = (i0 >= 0) & (i0 < n)
-        ok1 = (i0 + 1 >= 0) & (i0 + 1 < n)
-        y0 = np.where(ok0, self.branch[np.clip(i0, 0, n - 1)], -np.inf)
-        y1 = np.where(ok1, self.branch[np.clip(i0 + 1, 0, n - 1)], -np.inf)
-        with np.errstate(invalid="ignore"):
-            val = np.where(w == 0, y0, np.where(np.isfinite(y0) & np.isfinite(y1), (1 - w) * y0 + w * y1, -np.inf))
-        return val, ks
-
-    def __call__(self, phi) -> np.ndarray:
-        """Δφ [rad] at phi (the pair with the largest Δφ is in contact)."""
-        val, _ = self.branches(phi)
-        out = val.max(1)
-        if not np.all(np.isfinite(out)):
-            bad = np.asarray(phi, float)[~np.isfinite(out)][0]
-            p = self.result.pair
-            raise GeometryError(f"{p.gear1.name}-{p.gear2.name}", "no contact",
-                                f"no pair of teeth is in contact at phi = {math.degrees(bad):.6f} deg (contact ratio < 1)")
-        return out
 
 
 def phi1_grid(train: PlanetaryTrain, opts: TCAOptions) -> np.ndarray:

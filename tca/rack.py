@@ -13,6 +13,13 @@ generating pitch line, with the parabolic modification of Eq. (1.5)
     P(u) = Q_0 + u\,(\cos\alpha_n, -\sin\alpha_n) - a_c (u-u_0)^2 (\sin\alpha_n, \cos\alpha_n),
     \qquad Q_0 = (0,\; \pi m/4 + x m \tan\alpha_n).
 
+Tip relief (a tool property: the rack flank is relieved where it generates the gear's tip),
+amount :math:`C_a` from :math:`u_s` to :math:`u_a` (the parameters generating the start circle and the
+tip circle of the gear), linear (:math:`n = 1`) or parabolic (:math:`n = 2`), removed along the
+flank normal like the parabola:
+:math:`\Delta_r(u) = C_a \max(0, (u-u_s)/(u_a-u_s))^n`. The parabolic relief is tangent to the flank
+at :math:`u_s`; the linear one has a kink there.
+
 The tip of the rack (addendum ``h_a0 m`` below the reference line) is rounded by an arc of
 radius ``rho_f m`` tangent to the flank and to the tip line; the arc generates the fillet and
 the tip line the root circle of the gear. The transverse section of the skew rack stretches
@@ -42,6 +49,10 @@ class RackCutter:
     parabola_pos: float = 0.0  # a_c of the flank generating the +y tooth flank [1/mm]
     parabola_neg: float = 0.0  # a_c of the flank generating the -y tooth flank [1/mm]
     parabola_apex: float = 0.0  # u_0, parabola apex measured from the pitch point [mm]
+    relief: float = 0.0  # tip relief C_a generated on the gear's tip [mm] (both flanks), 0: none
+    relief_start: float = 0.0  # u_s: rack flank parameter where the relief starts [mm]
+    relief_end: float = 1.0  # u_a: parameter generating the gear's tip circle, where the relief is C_a [mm]
+    relief_power: int = 1  # 1 linear, 2 parabolic
 
     def __post_init__(self):
         if not (self.module > 0):
@@ -56,6 +67,10 @@ class RackCutter:
             v = getattr(self, name)
             if not (0 <= v < 0.5):
                 raise InputError(name + "_per_mm", v, "in [0, 0.5) 1/mm (parabola coefficient, Eq. 1.5)")
+
+        if self.relief < 0 or (self.relief > 0 and not (self.relief_end > self.relief_start)) or self.relief_power not in (1, 2):
+            raise InputError("tip_relief", (self.relief, self.relief_start, self.relief_end, self.relief_power),
+                             "amount >= 0 mm starting below the tip, linear (1) or parabolic (2)")
 
     def parabola(self, side: int) -> float:
         """Parabola coefficient a_c of the rack flank generating tooth flank `side` [1/mm]."""
@@ -76,11 +91,20 @@ class RackSegment:
         t = np.asarray(t, dtype=float)
         z = np.zeros_like(t)
         if self.kind == "flank":
-            ca, sa, eta0, a, u0 = self.coef
+            ca, sa, eta0, a, u0 = self.coef[:5]
             du = t - u0
-            P = np.stack([t * ca - a * du**2 * sa, eta0 - t * sa - a * du**2 * ca], -1)
-            P1 = np.stack([ca - 2 * a * du * sa, -sa - 2 * a * du * ca], -1)
-            P2 = np.stack([z - 2 * a * sa, z - 2 * a * ca], -1)
+            # material removed along the flank normal: the parabola (Eq. 1.5) plus the tip relief (module docstring)
+            d0, d1, d2 = a * du**2, 2 * a * du, 2 * a + z
+            if len(self.coef) > 5 and self.coef[5] > 0:
+                ca_r, us, ua, n = self.coef[5:]
+                x = np.clip((t - us) / (ua - us), 0.0, None)
+                on = t > us
+                d0 = d0 + ca_r * x**n
+                d1 = d1 + np.where(on, ca_r * n * x ** (n - 1) / (ua - us), 0.0)
+                d2 = d2 + (np.where(on, ca_r * 2 / (ua - us) ** 2, 0.0) if n == 2 else z)
+            P = np.stack([t * ca - d0 * sa, eta0 - t * sa - d0 * ca], -1)
+            P1 = np.stack([ca - d1 * sa, -sa - d1 * ca], -1)
+            P2 = np.stack([-d2 * sa, -d2 * ca], -1)
             P3 = np.zeros_like(P)
         elif self.kind == "fillet":
             ch, ceta, rho = self.coef
@@ -111,7 +135,8 @@ def rack_segments(rack: RackCutter, side: int, profile_shift: float, flank_tip_h
     ca, sa = math.cos(al), math.sin(al)
     a, u0 = rack.parabola(side), rack.parabola_apex
     eta0 = math.pi * m / 4 + profile_shift * m * math.tan(al)
-    flank = RackSegment("flank", 0.0, 0.0, (ca, sa, eta0, a, u0))
+    relief = (rack.relief, rack.relief_start, rack.relief_end, rack.relief_power) if rack.relief > 0 else ()
+    flank = RackSegment("flank", 0.0, 0.0, (ca, sa, eta0, a, u0) + relief)
     h_tip = (profile_shift - rack.addendum) * m
     rho = rack.tip_radius * m
 
@@ -147,5 +172,5 @@ def rack_segments(rack: RackCutter, side: int, profile_shift: float, flank_tip_h
     return {
         "root": RackSegment("root", -math.pi * m / 2, -C[1], (h_tip,)),
         "fillet": RackSegment("fillet", 0.0, w_j, (C[0], C[1], rho)),
-        "flank": RackSegment("flank", uj, u_tip, (ca, sa, eta0, a, u0)),
+        "flank": RackSegment("flank", uj, u_tip, (ca, sa, eta0, a, u0) + relief),
     }

@@ -28,6 +28,7 @@ AREAS = {
     "part3": ("pipelines.bench.part3", {}),
     "stress": ("pipelines.bench.stress", {}),
     "reliability": ("pipelines.bench.reliability", ONE_CORE),
+    "standard": ("pipelines.bench.standard", {}),
 }
 
 

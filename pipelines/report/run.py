@@ -211,6 +211,17 @@ def write_report(summary: dict, path: Path) -> Path:
                          f"{m['max_contact_pressure_mpa']:.1f} | {_fmt(m.get('max_von_mises_mpa'), 5)} | "
                          f"{m['edge_pressure_mpa']:.1f} | {m['edge_contact']} | "
                          f"{m['tca_kind']} | {m['hertz_estimate']['p0_mpa']:.0f} |")
+    for itf, d in s["interfaces"].items():  # where the load was shared: every modelled pair of teeth
+        shares = s["load_share"][itf].get("teeth", {})
+        rows = sorted((t.get("offset", 0), n, shares.get(n, 0.0)) for n, t in d.get("teeth", {}).items())
+        if rows:
+            lines += ["", f"Load per pair of teeth, {itf} (offset 0: the loaded pair of the TCA): "
+                      + ", ".join(f"{n} (offset {q:+d}) {v:.3f}" for q, n, v in rows) + "."]
+    iso = s.get("iso6336_sigma_f0_mpa")
+    if iso:
+        lines += ["", "ISO 6336-3 method B nominal root stress σ_F0 (whole load on one tooth at its HPSTC, no load "
+                  "factors): " + ", ".join(f"{g} {_fmt(v)} MPa" for g, v in iso.items())
+                  + f"; FE max fillet stress {_fmt(s.get('max_fillet_stress_mpa'))} MPa ({s.get('max_fillet_set', '')})."]
     lines += ["", "## Stage times [s]", "", "| stage | wall [s] |", "|---|---|"]
     for k, v in s["stages"].items():
         lines.append(f"| {k} | {v:.2f} |")

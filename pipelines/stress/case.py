@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 from tca.errors import InputError
 from tca.pair import GearPair
 from tca.pair_tca import ARCSEC, TCAOptions
+from tca.pair_te import GRID, NAMED, POSITIONS, path_angle
 from tca.planetary import PlanetaryTrain, ShaftErrors
 
 from pipelines.cases.reader import ARCMIN, read_gears, read_pair, read_tca_options
@@ -40,8 +41,9 @@ class StressCase:
     regulation_tol: float = 1e-3 * ARCSEC  # [rad]
     regulation_maxiter: int = 12
     member_phase: str = ""  # 'assembled' or 'nominal'; '' -> 'nominal' without regulation, else 'assembled'
-    position: object = "max_te"  # 'max_te', 'min_te' or a grid index
+    position: object = "max_te"  # 'max_te', 'min_te', a grid index; pair model also 'pitch', 'hpstc', 'lpstc'
     phi1: float | None = None  # [rad] instead of position
+    roll: float | None = None  # [rad] driver's roll angle at mid-face, instead of position (pair model)
     tca: TCAOptions = field(default_factory=TCAOptions)
     mesh: SizeRules = field(default_factory=SizeRules)
     fe: FESettings = field(default_factory=FESettings)
@@ -70,10 +72,16 @@ class StressCase:
             if any(abs(x) > lim for x in dz):
                 raise InputError("regulation.dz_a_mm", dz, f"|value| <= half the face width, {lim:g} mm")
         pos = self.position
-        if not (pos in ("max_te", "min_te") or (isinstance(pos, int) and not isinstance(pos, bool))):
-            raise InputError("position", pos, "'max_te', 'min_te' or an integer index of the TCA positions")
+        allowed = POSITIONS if self.model == "pair" else GRID
+        if not (pos in allowed or (isinstance(pos, int) and not isinstance(pos, bool))):
+            raise InputError("position", pos, ", ".join(repr(p) for p in allowed) + " or an integer index of the TCA positions"
+                             + ("" if self.model == "pair" else " (named positions on the path of contact: pair model)"))
         if self.phi1 is not None and not math.isfinite(self.phi1):
             raise InputError("phi1_deg", self.phi1, "a finite angle")
+        if self.roll is not None and (self.model != "pair" or self.phi1 is not None or not math.isfinite(self.roll)):
+            raise InputError("roll_deg", math.degrees(self.roll), "a finite angle, pair model, without phi1_deg")
+        if self.model == "pair" and self.phi1 is None and (self.roll is not None or pos in NAMED):
+            path_angle(self.pair, pos, self.roll)  # a position off the path of contact fails here, before any work
 
 
 def _read_mesh(t: Table | None) -> SizeRules:
@@ -131,18 +139,19 @@ def _read_fe(t: Table | None) -> FESettings:
 
 
 def _read_position(case: Table):
-    has_phi = case.has("phi1_deg")
-    if has_phi and case.has("position"):
-        raise InputError("phi1_deg", case.data["phi1_deg"], "either phi1_deg or position, not both")
-    phi1 = math.radians(case.get("phi1_deg", float, lo=-3600.0, hi=3600.0)) if has_phi else None
+    given = [k for k in ("position", "phi1_deg", "roll_deg") if case.has(k)]
+    if len(given) > 1:
+        raise InputError(given[1], case.data[given[1]], f"one of position, phi1_deg, roll_deg, not both {given[0]} and {given[1]}")
+    phi1 = math.radians(case.get("phi1_deg", float, lo=-3600.0, hi=3600.0)) if case.has("phi1_deg") else None
+    roll = math.radians(case.get("roll_deg", float, lo=0.0, hi=180.0)) if case.has("roll_deg") else None
     v = case.data.get("position", "max_te")
     if isinstance(v, int) and not isinstance(v, bool):
         pos = case.get("position", int)
     elif isinstance(v, str):
-        pos = case.get("position", str, "max_te", choices=("max_te", "min_te"))
+        pos = case.get("position", str, "max_te", choices=POSITIONS)
     else:
-        raise InputError("position", v, "'max_te', 'min_te' or an integer index of the TCA positions")
-    return pos, phi1
+        raise InputError("position", v, ", ".join(repr(p) for p in POSITIONS) + " or an integer index of the TCA positions")
+    return pos, phi1, roll
 
 
 def read_stress_case(case: Table) -> StressCase:
@@ -152,7 +161,7 @@ def read_stress_case(case: Table) -> StressCase:
     model = case.get("model", str, choices=MODELS)
     title = case.get("title", str, "")
     torque = case.get("torque_nm", float, lo=0.0, lo_open=True, hi=1e7) * 1e3
-    pos, phi1 = _read_position(case)
+    pos, phi1, roll = _read_position(case)
     tca = read_tca_options(case.table("tca", required=False))
     mesh = _read_mesh(case.table("mesh", required=False))
     fe = _read_fe(case.table("fe", required=False))
@@ -165,7 +174,7 @@ def read_stress_case(case: Table) -> StressCase:
             if g.runout > 0:  # the FE scene places a periodic pair (tca.planetary_mesh.MeshTE): refuse, not ignore
                 raise InputError(f"gears.{g.name}.runout_um", g.runout * 1e3, "0 in a stress case (run-out is analysed "
                                  "by gearfe tca; the FE model places the teeth of a pair without it)")
-        out = StressCase("pair", torque, title, pair=pair, position=pos, phi1=phi1, tca=tca, mesh=mesh, fe=fe)
+        out = StressCase("pair", torque, title, pair=pair, position=pos, phi1=phi1, roll=roll, tca=tca, mesh=mesh, fe=fe)
     else:
         for k in ("driver", "driven", "center_distance_mm", "misalignment"):
             if case.has(k):
@@ -194,7 +203,7 @@ def read_stress_case(case: Table) -> StressCase:
         if tca.steps_per_cycle % train.planets:
             raise InputError("tca.steps_per_cycle", tca.steps_per_cycle, f"a multiple of the number of planets n = {train.planets}")
         out = StressCase("twin", torque, title, train=train, errors=errors, regulation=mode, dz=dz,
-                         regulation_tol=tol * ARCSEC, regulation_maxiter=maxit, member_phase=phase, position=pos, phi1=phi1, tca=tca,
+                         regulation_tol=tol * ARCSEC, regulation_maxiter=maxit, member_phase=phase, position=pos, phi1=phi1, roll=roll, tca=tca,
                          mesh=mesh, fe=fe)
     case.done()
     return out

@@ -174,9 +174,9 @@ def mesh_scene(scene: Scene) -> HexMesh:
     bodies: dict[str, list] = {}
     for p in scene.parts:
         s = p.sizes
-        opts = MeshOptions(teeth=s["teeth"], rim_depth=s["rim"], coarse_size=s["coarse"], contact_size=s["contact"],
-                           fillet_size=s["fillet"], growth=s["growth"], axial_contact_size=s["axial"],
-                           neighbour_size=s["neighbour"])
+        opts = MeshOptions(teeth=s.teeth, rim_depth=s.rim, coarse_size=s.coarse, contact_size=s.contact,
+                           fillet_size=s.fillet, growth=s.growth, axial_contact_size=s.axial,
+                           neighbour_size=s.neighbour)
         m = mesh_gear(p.gear, opts, centre=p.centre, focus=p.focus).transformed(p.R, p.t)
         bodies.setdefault(p.body, []).append((p, m))
     refs = {b: r for b, (r, _) in scene.rigid.items()}

@@ -125,8 +125,8 @@ def _interfaces(scene: Scene, rows: list[dict]) -> tuple[dict, dict]:
              "slave_body": (itf.driven if itf.slave == "driven" else itf.driver).body,
              "slave_is_driver": itf.slave != "driven",
              "face_width_mm": float(min(itf.driver.gear.face_width, itf.driven.gear.face_width)),
-             "hertz_estimate": {k: (float(v) if not isinstance(v, bool) else v) for k, v in itf.hertz.items()},
-             "mesh_sizes_mm": {k: float(itf.driven.sizes[k]) for k in ("contact", "axial", "fillet", "coarse", "extent_u", "extent_z")}}
+             "hertz_estimate": itf.hertz.as_json(),
+             "mesh_sizes_mm": {k: float(getattr(itf.driven.sizes, k)) for k in ("contact", "axial", "fillet", "coarse", "extent_u", "extent_z")}}
         d["members"][itf.member] = m
         for q, (x, (off, j1, j2)) in enumerate(zip(mine, itf.tooth_pairs())):
             d["teeth"][x["name"][len(pref):]] = {**{k: v for k, v in x.items() if k not in ("name", "group")}, "offset": off}

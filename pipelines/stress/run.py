@@ -27,8 +27,10 @@ Case file (TOML, ``kind = "stress"``)::
     model = "twin"                # or "pair"
     title = "..."
     torque_nm = 500.0             # T: on the ring (twin) or the driven gear (pair), resisting
-    position = "max_te"           # "max_te", "min_te" or an index of the TCA grid; or instead:
-    # phi1_deg = 12.3             # the driving gear's angle
+    position = "max_te"           # "max_te", "min_te" or an index of the TCA grid; pair model also
+                                  # "pitch", "hpstc", "lpstc" (tca.pair_te: on the path of contact);
+    # phi1_deg = 12.3             # or instead the driving gear's angle,
+    # roll_deg = 25.0             # or (pair model) the driver's roll angle of the contact at mid-face
     # pair: driver = "sun", driven = "planet", [gears.*], [misalignment], center_distance_mm
     # twin: planets = 5, member_gap_mm = 10.0, [gears.sun], [gears.planet], [gears.ring] (members a)
     [shaft]                       # twin: errors of the modelled planet shaft
@@ -70,6 +72,8 @@ import numpy as np
 
 from tca.errors import InputError
 from tca.pair_tca import ARCSEC, run_pair_tca
+from tca.iso6336 import tooth_root
+from tca.pair_te import grid_index, position_angle
 from tca.planetary_mesh import phi1_grid, run_subgear_tca
 from tca.planetary_regulation import nominal_peak, regulate_member, twin_te
 
@@ -79,18 +83,6 @@ from pipelines.stress.results import member_teeth, summarize
 from pipelines.stress.scene import pair_scene, twin_scene
 
 __all__ = ["run_stress", "build_scene"]
-
-
-def _pick(te: np.ndarray, position) -> int:
-    n = len(te)
-    if position == "max_te":
-        return int(np.argmax(te[:-1] if n > 1 else te))
-    if position == "min_te":
-        return int(np.argmin(te[:-1] if n > 1 else te))
-    if not -n <= position < n:
-        raise InputError("position", position, f"an integer index in [{-n}, {n - 1}] (negative: from the end), "
-                         "'max_te' or 'min_te'")
-    return int(position) % n
 
 
 def _regulation(case: StressCase, cache: dict, progress) -> tuple[tuple, dict]:
@@ -123,7 +115,7 @@ def _build(case: StressCase, progress=None):
     E, nu = case.fe.E, case.fe.nu
     if case.model == "pair":
         r = run_pair_tca(case.pair, case.tca)
-        phi1 = float(r.phi1[_pick(r.te, case.position)]) if case.phi1 is None else case.phi1
+        phi1 = position_angle(r, case.position, case.phi1, case.roll)
         scene = pair_scene(case.pair, r, phi1, case.torque, case.mesh, E, nu)
         rec = {"te_peak_to_peak_arcsec": r.te_peak_to_peak_arcsec, "edge_contact": r.edge_contact,
                "elapsed_s": r.elapsed}
@@ -131,7 +123,7 @@ def _build(case: StressCase, progress=None):
     cache: dict = {}
     dz, reg = _regulation(case, cache, progress)
     tw = twin_te(case.train, 0, case.errors, dz, case.tca, cache)
-    phi1 = float(tw.phi1[_pick(tw.te, case.position)]) if case.phi1 is None else case.phi1
+    phi1 = float(tw.phi1[grid_index(tw.te, case.position)]) if case.phi1 is None else case.phi1
     grid = phi1_grid(case.train, case.tca)
     subs = {k: run_subgear_tca(case.train, 0, k, case.errors, dz[0 if k == "a" else 1], case.tca, np.array([phi1]), cache)
             for k in ("a", "b")}
@@ -208,6 +200,23 @@ def plausibility_warnings(case: StressCase, s: dict) -> list[str]:
     return out
 
 
+def _iso6336(case: StressCase) -> dict:
+    """Pair model: ISO 6336-3 method B nominal root stress σ_F0 of both gears beside the FE fillet stress.
+
+    σ_F0 assumes the whole load on one tooth at the HPSTC (no load factors); the FE fillet stress equals it only
+    where the model does too (``position = "hpstc"``, ``mesh.teeth = 1``). Internal gears and modified racks:
+    None.
+    """
+    if case.model != "pair":
+        return {}
+    try:
+        rec = tooth_root(case.pair, case.torque)
+    except InputError:
+        return {"iso6336_sigma_f0_mpa": None, "iso6336": None}
+    return {"iso6336_sigma_f0_mpa": {g.name: (rec[g.name] or {}).get("sigma_f0_mpa") for g in (case.pair.gear1, case.pair.gear2)},
+            "iso6336": rec}
+
+
 def run_stress(case: StressCase, out: Path, progress=None, artefacts: dict | None = None) -> dict:
     """TCA, mesh, contact solve and results of a case; writes ``out/result.vtu`` and returns the summary.
 
@@ -248,12 +257,14 @@ def run_stress(case: StressCase, out: Path, progress=None, artefacts: dict | Non
     t_res = time.perf_counter() - t1
     say(f"results: max von Mises {s['max_von_mises_mpa']:.1f} MPa, max contact pressure {s['max_contact_pressure_mpa']:.1f} MPa, "
         f"torque balance error {s['torque_balance_error']:.2e}")
+    iso = _iso6336(case)
     warnings = _warnings(scene, case.tca.elastic_approach, s["interfaces"]) + plausibility_warnings(case, s)
     for w in warnings:
         say("warning: " + w)
     summary = {
         "model": case.model, "title": case.title, "torque_nm": case.torque * 1e-3,
         **s,
+        **iso,
         "warnings": warnings,
         "position": pos, "tca": tca_rec,
         "tca_s": t_tca, "mesh_s": t_mesh, "solve_s": t_solve, "results_s": t_res,

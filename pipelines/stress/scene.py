@@ -5,13 +5,8 @@ tooth, placed in :math:`S_f` — the meshing interfaces between them and the sup
 (Fig. 1.7). It is built from tooth contact analysis only; :func:`pipelines.stress.run.run_stress`
 meshes and solves it.
 
-Contact at an angle (:func:`mesh_contact`). A pair TCA (:func:`tca.pair_tca.run_pair_tca`) gives the
-reference pair of teeth on a grid of :math:`\phi_1`; at an angle :math:`\phi` the pair in contact
-is the branch :math:`k` with the largest :math:`\Delta\phi_2` (:class:`tca.planetary_mesh.MeshTE`), i.e.
-tooth :math:`-k \bmod N` of each gear, and :math:`\phi_2 = (N_1/N_2)\phi + \Delta\phi_2`. On the grid
-the TCA solution is used as it is (the two contact nodes coincide to the TCA residual); between
-grid points the reference solution is interpolated linearly (an initial gap of the order of
-:math:`h^2 \max|\Delta\phi_2''|\,r/8`, a few 1e-5 mm, far below the elastic approach).
+Contact at an angle: :func:`tca.pair_te.mesh_contact` (the one home of a pair's TE and contact at
+any angle, with the ties of conjugate flanks resolved; re-exported here).
 
 Models.
 
@@ -42,8 +37,11 @@ elliptical contact (Johnson, Contact Mechanics, eqs. 4.39–4.40; :math:`1/E^* =
     \frac{B}{A} = \frac{(a/b)^2 E(e) - K(e)}{K(e) - E(e)},\qquad
     a^3 = \frac{3P\,(K(e)-E(e))}{2\pi A E^* e^2},\qquad b = a\sqrt{1-e^2},\qquad p_0=\frac{3P}{2\pi ab},
 
-(line contact, :math:`\lambda_1 \approx 0`: :math:`b=\sqrt{4P'R/(\pi E^*)}`, :math:`R=1/\lambda_2`,
-:math:`P'=P/B_w`, :math:`a = B_w/2`) sizes the loaded flanks: profile size :math:`b/3`, axial size
+(line contact — aligned involute gears, or an ellipse longer than the contact line
+:math:`L = B/\cos\beta_b`, :func:`contact_length`: :math:`w = P/L`,
+:math:`b=\sqrt{4wR/(\pi E^*)} = \sqrt{8wR/(\pi E')}`, :math:`R=1/\lambda_2`, :math:`p_0 = 2w/(\pi b)`,
+:math:`a = L/2`, the major axis at the base helix angle :math:`\beta_b` from the axis, profile size
+:math:`b/4`) sizes the loaded flanks: profile size :math:`b/3`, axial size
 :math:`\min(a/6,\ b/(3|\sin\theta|))` (θ the major axis from the gear axis), kept over a zone of
 half-lengths 1.2 × the ellipse's extent before growing (:class:`mesher.Focus` extents); all sizes
 are divided by ``refine``. Edge and corner contacts (bounded surfaces) keep the profile size and
@@ -59,122 +57,22 @@ import numpy as np
 
 from mesher import Focus, ReferencePoint
 from mesher.body import model_teeth
-from tca.contact import PlacedFlank
-from tca.ellipse import contact_ellipse
-from tca.errors import GeometryError, InputError
+from tca.errors import InputError
 from tca.gear import Gear
 from tca.pair import GearPair
 from tca.pair_tca import ContactKind, PairTCAResult
 from tca.planetary import PlanetaryTrain, ShaftErrors
-from tca.planetary_mesh import MeshTE, member_pose, subgear_pairs
+from tca.pair_te import MeshContact, mesh_contact
+from tca.planetary_mesh import member_pose, subgear_pairs
 from tca.transforms import rot_x, rot_z
 from tca.units import ARCSEC
 
-from pipelines.stress.sizing import SizeRules, contact_sizes, hertz_contact
+from pipelines.stress.sizing import ContactSizes, HertzContact, SizeRules, contact_sizes, hertz_contact
 
-__all__ = ["MeshContact", "mesh_contact", "Part", "Interface",
+__all__ = ["MeshContact", "mesh_contact", "contact_length", "Part", "Interface",
            "Scene", "pair_scene", "twin_scene", "PHASES"]
 
 _SIDE = {1: "pos", -1: "neg"}
-
-
-# ---------------------------------------------------------------------------------------------- contact at an angle
-@dataclass(frozen=True, eq=False)
-class MeshContact:
-    """Contact of a meshing pair at an angle of its driving gear, in the pair frame."""
-
-    k: int  # pair in contact: tooth -k mod N of each gear
-    phi1: float  # [rad]
-    phi2: float  # [rad]
-    te: float  # Δφ2 [rad]
-    params: tuple  # (u1, v1, u2, v2) [mm] on the reference teeth
-    kind: int  # ContactKind
-    point: np.ndarray  # contact point [mm]
-    normal: np.ndarray  # unit normal out of gear 1's tooth
-    curvature: tuple  # (λ1, λ2) eigenvalues of K2 - K1 [1/mm]
-    angle: float  # major axis from the projected gear-1 axis [rad]
-    exact: bool  # on the TCA grid
-    slope: float = 0.0  # dΔφ2/dφ1 of the pair in contact [rad/rad]
-    arms: tuple = (0.0, 0.0)  # moment arms ((x - o_i) x n) . a_i of the normal about both axes [mm]
-    next_gap: float = math.inf  # [mm] TCA separation of the next pair of teeth, (Δφ2 - Δφ2 of the next branch) |arm 2|
-    slopes: dict = field(default_factory=dict)  # offset q -> dΔφ2/dφ1 of the pair q teeth on (branch k - q)
-
-    @property
-    def ratio(self) -> float:
-        """Instantaneous ratio dφ2/dφ1 = N1/N2 + dΔφ2/dφ1 of the pair in contact."""
-        return self.arms[0] / self.arms[1] if self.arms[1] else float("nan")
-
-    def ratio_of(self, q: int) -> float:
-        """Instantaneous ratio of the pair of teeth at offset q from the pair in contact (nan: not on its branch)."""
-        return self.ratio + self.slopes.get(q, float("nan")) - self.slope if q else self.ratio
-
-
-def mesh_contact(result: PairTCAResult, phi: float) -> MeshContact:
-    """The contact of a pair TCA's drive at driving-gear angle ``phi`` [rad] (module docstring)."""
-    pair = result.pair
-    mte = MeshTE.from_result(result)
-    val, ks = mte.branches(np.array([phi], float))
-    q = int(np.argmax(val[0]))
-    te = float(val[0, q])
-    if not math.isfinite(te):
-        raise GeometryError(f"{pair.gear1.name}-{pair.gear2.name}", "no contact",
-                            f"no pair of teeth is in contact at phi = {math.degrees(phi):.6f} deg")
-    k = int(ks[q])
-    others = np.delete(val[0], q)
-    te_next = float(others[np.isfinite(others)].max(initial=-math.inf))
-    ref = result.reference
-    n = len(ref.phi1)
-    h = (ref.phi1[-1] - ref.phi1[0]) / (n - 1)
-    p1, p2 = 2 * math.pi / pair.gear1.teeth, 2 * math.pi / pair.gear2.teeth
-    t = (phi - k * p1 - ref.phi1[0]) / h
-    tr = round(t)
-    exact = bool(abs(t - tr) < 1e-7)
-    ok = (ref.kind != ContactKind.NONE) & np.all(np.isfinite(ref.x), axis=1)
-    if exact:
-        i0, w = int(tr), 0.0
-    else:
-        i0 = int(math.floor(t))
-        w = t - i0
-    i1 = min(i0 + 1, n - 1)
-    if not (0 <= i0 < n) or not ok[i0]:
-        raise GeometryError(f"{pair.gear1.name}-{pair.gear2.name}", "no contact",
-                            f"the reference pair has no contact at phi = {math.degrees(phi - k * p1):.6f} deg")
-    if w > 0 and ok[i1]:
-        x = (1 - w) * ref.x[i0] + w * ref.x[i1]
-        kind = int(ref.kind[i0] if w < 0.5 else ref.kind[i1])
-    else:
-        x, kind = ref.x[i0].copy(), int(ref.kind[i0])
-    phi2 = pair.ratio * phi + te
-    m1, m2 = pair.mounts()
-    f1, f2 = PlacedFlank(pair.gear1, pair.side1, m1), PlacedFlank(pair.gear2, pair.side2, m2)
-    w1, _, _ = f1.world(np.array([x[0]]), np.array([x[1]]), np.array([phi - k * p1]))
-    w2, _, _ = f2.world(np.array([x[2]]), np.array([x[3]]), np.array([phi2 - k * p2]))
-    _, _, ang, lam = contact_ellipse(w1, w2, 1.0, m1.axis[None, :])
-    x0, n0 = w1.r[0].copy(), w1.n[0].copy()
-    arms = tuple(float(np.cross(x0 - m.origin, n0) @ m.axis) for m in (m1, m2))
-    return MeshContact(k, float(phi), float(phi2), te, tuple(float(v) for v in x[:4]), kind, x0, n0,
-                       (float(lam[0, 0]), float(lam[0, 1])), float(ang[0]), exact, _slope(mte, k, phi), arms,
-                       (te - te_next) * abs(arms[1]), {q: _slope(mte, k - q, phi) for q in range(-4, 5)})
-
-
-def _slope(mte: MeshTE, k: int, phi: float) -> float:
-    """dΔφ2/dφ1 [rad/rad] of branch k at phi: parabola through the three nearest grid values."""
-    y = mte.branch
-    t = (phi - k * mte.pitch - mte.phi0) / mte.h
-    if not -0.5 <= t <= len(y) - 0.5:
-        return float("nan")  # the branch is not defined at phi
-    i = int(round(t))
-    ok = lambda j: 0 <= j < len(y) and np.isfinite(y[j])  # noqa: E731
-    if ok(i - 1) and ok(i) and ok(i + 1):
-        d = 0.5 * (y[i + 1] - y[i - 1]) + (t - i) * (y[i + 1] - 2 * y[i] + y[i - 1])
-    elif ok(i) and ok(i + 1):
-        d = y[i + 1] - y[i]
-    elif ok(i - 1) and ok(i):
-        d = y[i] - y[i - 1]
-    else:
-        return float("nan")
-    return float(d / mte.h)
-
 
 
 # ---------------------------------------------------------------------------------------------- scene
@@ -187,7 +85,7 @@ class Part:
     gear: Gear
     centre: int  # loaded tooth (the gear's own index)
     focus: Focus
-    sizes: dict
+    sizes: ContactSizes
     R: np.ndarray
     t: np.ndarray
 
@@ -197,7 +95,7 @@ class Part:
 
     @property
     def teeth(self) -> list[int]:
-        return model_teeth(self.gear, self.sizes["teeth"], self.centre)
+        return model_teeth(self.gear, self.sizes.teeth, self.centre)
 
 
 @dataclass(frozen=True, eq=False)
@@ -213,7 +111,7 @@ class Interface:
     contact: MeshContact
     point: np.ndarray  # TCA contact point in S_f [mm]
     normal: np.ndarray  # unit normal out of the driver's tooth in S_f
-    hertz: dict
+    hertz: HertzContact
     slave: str  # 'driver' or 'driven'
 
     def tooth_pairs(self) -> list[tuple[int, int, int]]:
@@ -244,10 +142,10 @@ def _affine(R, t, Rm, tm):
 
 def _part(body, label, gear, contact_k, params, side, phi, mount, frame, sizes, teeth):
     u, v = params
-    focus = Focus(side, u, v, sizes["extent_u"], sizes["extent_z"])
+    focus = Focus(side, u, v, sizes.extent_u, sizes.extent_z)
     Rm, _ = mount.rotation(phi)
     R, t = _affine(frame[0], frame[1], Rm, mount.origin)
-    return Part(body, label, gear, (-contact_k) % gear.teeth, focus, {**sizes, "teeth": teeth}, R, t)
+    return Part(body, label, gear, (-contact_k) % gear.teeth, focus, replace(sizes, teeth=teeth), R, t)
 
 
 def _load(pair: GearPair, c: MeshContact, torque: float) -> float:
@@ -259,20 +157,27 @@ def _load(pair: GearPair, c: MeshContact, torque: float) -> float:
 
 def _interface(name, member, pair, c, torque, rules, E, nu, frame, bodies, labels, slave):
     """Driver and driven parts of one mesh at its contact, with Hertz-based sizes."""
-    hz = hertz_contact(c.curvature, _load(pair, c, torque), E, nu, min(pair.gear1.face_width, pair.gear2.face_width))
+    hz = hertz_contact(c.curvature, _load(pair, c, torque), E, nu, contact_length(pair))
     g1, g2 = pair.gear1, pair.gear2
     m1, m2 = pair.mounts()
     s1 = contact_sizes(rules, g1, hz, c.angle, c.kind)
     s2 = contact_sizes(rules, g2, hz, c.angle, c.kind)
     # both flanks get the finer of the two size sets (master and slave equally fine at the contact)
-    for key in ("contact", "axial"):
-        s1[key] = s2[key] = min(s1[key], s2[key])
+    fine = {k: min(getattr(s1, k), getattr(s2, k)) for k in ("contact", "axial")}
+    s1, s2 = replace(s1, **fine), replace(s2, **fine)
     u1, v1, u2, v2 = c.params
     d = _part(bodies[0], labels[0], g1, c.k, (u1, v1), pair.side1, c.phi1, m1, frame, s1, rules.teeth)
     n = _part(bodies[1], labels[1], g2, c.k, (u2, v2), pair.side2, c.phi2, m2, frame, s2, rules.teeth)
     point = frame[0] @ c.point + frame[1]
     normal = frame[0] @ c.normal
     return Interface(name, member, d, n, pair.side1, pair.side2, c, point, normal, hz, slave)
+
+
+def contact_length(pair: GearPair) -> float:
+    """Length [mm] of one contact line across the common face width: B / cos β_b (β_b the base helix angle)."""
+    g = pair.gear1
+    beta_b = math.atan(math.tan(g.helix) * g.r_b / g.r_p)
+    return min(pair.gear1.face_width, pair.gear2.face_width) / math.cos(beta_b)
 
 
 def _kind_name(k: int) -> str:

@@ -12,41 +12,71 @@ from tca.errors import GeometryError, InputError
 from tca.gear import Gear
 from tca.pair_tca import ContactKind
 
-__all__ = ["hertz_contact", "SizeRules", "contact_sizes", "NEIGHBOUR"]
+__all__ = ["HertzContact", "hertz_contact", "SizeRules", "ContactSizes", "contact_sizes", "NEIGHBOUR"]
 
 # ---------------------------------------------------------------------------------------------- Hertz and sizes
-def hertz_contact(lam: tuple, load: float, E: float, nu: float, length: float) -> dict:
-    """Hertz contact of two bodies of one material: semi-axes a >= b [mm], peak p0 [MPa] (module docstring).
+@dataclass(frozen=True)
+class HertzContact:
+    """Hertz estimate of one contact: semi-axes a >= b [mm], peak pressure p0 [MPa], normal load [N].
 
-    lam: eigenvalues (λ1, λ2) of the relative curvature [1/mm]; load [N]; ``length`` [mm] bounds
-    the major axis (the face width; a line contact is spread over it).
+    ``line``: a line contact (the ellipse would be longer than the contact line): ``a`` is half the
+    contact line's length and ``b`` the half-width of the band, ``w`` = load / (2 a) [N/mm].
+    """
+
+    a: float  # [mm]
+    b: float  # [mm]
+    p0: float  # [MPa]
+    line: bool
+    load: float  # [N]
+
+    @property
+    def w(self) -> float:
+        """Load per unit length of the contact line [N/mm] (line contact; for an ellipse P / (2a))."""
+        return self.load / (2.0 * self.a)
+
+    def as_json(self) -> dict:
+        """The summary's record (keys with units)."""
+        return {"a_mm": self.a, "b_mm": self.b, "p0_mpa": self.p0, "line": self.line, "load_n": self.load}
+
+
+def _ratio(e: float) -> float:
+    """B/A of an ellipse of eccentricity e (Johnson eq. 4.39)."""
+    m = e * e
+    K, Ee = ellipk(m), ellipe(m)
+    return ((Ee / (1 - m)) - K) / (K - Ee)
+
+
+_E_MAX = 1 - 1e-12  # largest eccentricity solved for; B/A beyond _ratio(_E_MAX) (~1e11) is a line contact
+
+
+def hertz_contact(lam: tuple, load: float, E: float, nu: float, length: float) -> HertzContact:
+    """Hertz contact of two bodies of one material (module docstring of :mod:`pipelines.stress.scene`).
+
+    lam: eigenvalues (λ1, λ2) of the relative curvature [1/mm]; load [N]; ``length`` [mm]: the
+    length of the contact line inside both flanks (the face width over cos β_b for a helical pair);
+    an ellipse longer than it is a line contact, b = sqrt(4 w R / (π E*)) = sqrt(8 w R / (π E')),
+    w = load / length, R = 1 / λ2, E* = E / (2 (1 - ν²)) = E' / 2, p0 = 2 w / (π b).
     """
     Es = E / (2.0 * (1.0 - nu**2))
     l1, l2 = sorted(float(x) for x in lam)
-    if not (l2 > 0 and load > 0):
+    if not (l2 > 0 and load > 0 and length > 0):
         raise GeometryError("contact", "not convex", f"relative curvatures {l1:.3g}, {l2:.3g} 1/mm and load {load:.3g} N: "
                             "the surfaces do not touch at a point or line (no Hertz estimate)")
     A, B = 0.5 * l1, 0.5 * l2
-    if A > 0:
+    if A > 0 and B / A < _ratio(_E_MAX):
         if B / A < 1 + 1e-9:
-            a = (3 * load / (8 * A * Es)) ** (1 / 3)
-            b = a
+            a = b = (3 * load / (8 * A * Es)) ** (1 / 3)
         else:
-            def f(e):
-                m = e * e
-                K, Ee = ellipk(m), ellipe(m)
-                return ((Ee / (1 - m)) - K) / (K - Ee) - B / A
-            e = brentq(f, 1e-6, 1 - 1e-15, xtol=1e-14)
+            e = brentq(lambda e: _ratio(e) - B / A, 1e-6, _E_MAX, xtol=1e-14)
             m = e * e
             K, Ee = ellipk(m), ellipe(m)
             a = (3 * load * (K - Ee) / (2 * math.pi * A * Es * m)) ** (1 / 3)
             b = a * math.sqrt(1 - m)
         if a <= 0.5 * length:
-            return {"a_mm": a, "b_mm": b, "p0_mpa": 3 * load / (2 * math.pi * a * b), "line": False, "load_n": load}
-    R = 1.0 / l2
-    P1 = load / length
-    b = math.sqrt(4 * P1 * R / (math.pi * Es))
-    return {"a_mm": 0.5 * length, "b_mm": b, "p0_mpa": 2 * P1 / (math.pi * b), "line": True, "load_n": load}
+            return HertzContact(a, b, 3 * load / (2 * math.pi * a * b), False, load)
+    w = load / length
+    b = math.sqrt(4 * w / (l2 * math.pi * Es))
+    return HertzContact(0.5 * length, b, 2 * w / (math.pi * b), True, load)
 
 
 NEIGHBOUR = 0.1  # default profile size on the other teeth's loaded flanks [module] (converged load share, see README)
@@ -90,14 +120,39 @@ class SizeRules:
             raise InputError("mesh.zone", self.zone, "in [0, 5] (zone half-lengths over the Hertz ellipse's)")
 
 
-def contact_sizes(rules: SizeRules, gear: Gear, hz: dict, angle: float, kind: int) -> dict:
-    """Sizes and zone of one loaded flank: keys coarse, contact, axial, fillet, rim, growth, extent_u, extent_z [mm]."""
+@dataclass(frozen=True)
+class ContactSizes:
+    """Element sizes and refined zone of one loaded flank [mm] (:class:`mesher.MeshOptions` fields)."""
+
+    coarse: float
+    contact: float  # profile size at the contact
+    axial: float  # axial size at the contact
+    fillet: float
+    neighbour: float  # profile size on the other teeth's loaded flanks
+    rim: float  # rim depth
+    growth: float
+    extent_u: float  # zone half-length along the profile
+    extent_z: float  # zone half-length along the axis
+    teeth: int = 3
+
+
+def contact_sizes(rules: SizeRules, gear: Gear, hz: HertzContact, angle: float, kind: int) -> ContactSizes:
+    """Sizes and zone of one loaded flank (module docstring of :mod:`pipelines.stress.scene`).
+
+    A line contact is sized as an ellipse with ``a`` half the contact line, its major axis at the base
+    helix angle β_b from the axis: on a spur gear the zone spans the face at one profile position; on a
+    helical gear it covers the inclined line, (B/2) tan β_b + b either side of the point along the profile.
+    """
     m, r = gear.module, rules.refine
     coarse = (rules.coarse if rules.coarse is not None else 0.75 * m) / r
-    a, b = hz["a_mm"], hz["b_mm"]
+    a, b = hz.a, hz.b
     s, c = abs(math.sin(angle)), abs(math.cos(angle))
-    surface = kind == ContactKind.SURFACE and not hz["line"]
-    contact = rules.contact if rules.contact is not None else b / 3.0
+    if hz.line:  # the contact line of an involute helicoid: inclined by the base helix angle across the flank
+        beta_b = math.atan(math.tan(gear.helix) * gear.r_b / gear.r_p)
+        s, c = math.sin(beta_b), math.cos(beta_b)
+    surface = kind == ContactKind.SURFACE
+    # a line contact's band is resolved one step finer (b/4: nodal peak within 5 % of Hertz at refine 1, docs)
+    contact = rules.contact if rules.contact is not None else b / (4.0 if hz.line else 3.0)
     if rules.axial is not None:
         axial = rules.axial
     elif surface:
@@ -112,6 +167,5 @@ def contact_sizes(rules: SizeRules, gear: Gear, hz: dict, angle: float, kind: in
     neighbour = min((rules.neighbour if rules.neighbour is not None else NEIGHBOUR * m) / max(r, 1.0), coarse)
     ext_u = rules.zone * (a * s + b * c) if surface else rules.zone * b
     ext_z = rules.zone * (a * c + b * s) if surface else 0.0
-    return {"coarse": coarse, "contact": contact, "axial": axial, "fillet": fillet, "neighbour": neighbour,
-            "rim": rules.rim_depth if rules.rim_depth is not None else 3.0 * m, "growth": rules.growth,
-            "extent_u": ext_u, "extent_z": ext_z}
+    return ContactSizes(coarse, contact, axial, fillet, neighbour, rules.rim_depth if rules.rim_depth is not None else 3.0 * m,
+                        rules.growth, ext_u, ext_z, rules.teeth)

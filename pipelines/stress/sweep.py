@@ -52,7 +52,7 @@ from pipelines.cases.schema import Table
 __all__ = ["POSITION_KEYS", "STEP_KEY", "validate_stress", "run_point_stress", "loaded_te", "second_pair_gap",
            "stress_scalars", "expand_positions", "plot_cycle"]
 
-POSITION_KEYS = ("position", "phi1_deg")  # keys of a stress case that choose the position
+POSITION_KEYS = ("position", "phi1_deg", "roll_deg")  # keys of a stress case that choose the position
 STEP_KEY = "positions.step"  # the CSV/axis column of a [positions] steps expansion
 TWIN_RING_AXIS = (0.0, 0.0, -1.0)  # the ring turns positively about -z_f (stress_scene.twin_scene)
 
