@@ -65,7 +65,7 @@ from .constraints import known_names
 from .model import ContactOptions, ContactPair
 
 __all__ = ["ContactSet", "contact_set", "ActiveSetSolution", "active_set", "penalty_active_set", "bilinear",
-           "project_to_faces"]
+           "project_to_faces", "surface_mass", "ContactPatch", "contact_patch"]
 
 _OPPOSITE = np.array([1, 0, 4, 5, 2, 3])
 
@@ -83,6 +83,8 @@ class ContactSet:
     G: sp.csr_matrix  # (k, 3n) gap gradient
     candidate: np.ndarray  # (k,) bool, gap0 < search_gap, or seed
     seed: np.ndarray  # (k,) bool, initial active set
+    shape: sp.csr_matrix | None = None  # (n, k) N_a(x_q) of the constraint points (nodes: 1 at the node)
+    mass: sp.csr_matrix | None = None  # (n, n) consistent slave-surface mass int N_a N_b dA (Gauss-point constraints)
 
     @property
     def stiffness(self) -> np.ndarray:
@@ -92,10 +94,43 @@ class ContactSet:
     def to_nodes(self, values: np.ndarray, n_nodes: int, rows=None) -> np.ndarray:
         """Nodal field of per-constraint values (area-weighted where a node is in two pairs; nan elsewhere)."""
         rows = np.arange(len(self.area)) if rows is None else rows
-        num = np.bincount(self.node[rows], weights=self.area[rows] * values[rows], minlength=n_nodes)
-        den = np.bincount(self.node[rows], weights=self.area[rows], minlength=n_nodes)
+        if self.shape is None:
+            num = np.bincount(self.node[rows], weights=self.area[rows] * values[rows], minlength=n_nodes)
+            den = np.bincount(self.node[rows], weights=self.area[rows], minlength=n_nodes)
+        else:
+            R = self.shape[:n_nodes][:, rows]
+            num, den = R @ (self.area[rows] * values[rows]), R @ self.area[rows]
         with np.errstate(invalid="ignore", divide="ignore"):
             return np.where(den > 0, num / den, np.nan)
+
+    def nodal_forces(self, lam: np.ndarray, n_nodes: int, rows=None) -> np.ndarray:
+        """Normal contact force per slave node F_a = sum_q N_a(x_q) lambda_q [N] (n,)."""
+        rows = np.arange(len(self.area)) if rows is None else rows
+        return self.shape[:n_nodes][:, rows] @ lam[rows]
+
+    def pressure(self, lam: np.ndarray, n_nodes: int, rows=None) -> np.ndarray:
+        """Nodal contact pressure [MPa] (n,), nan off the slave surfaces (module docstring, "Pressure").
+
+        Node constraints: lambda_a / A_a. Gauss-point constraints: the lumped projection
+        p0 = F / D of the nodal forces, corrected by one Jacobi step of the consistent
+        projection M p = F, p = max(0, p0 + D^-1 (F - M p0)) where p0 > 0.
+        """
+        if self.mass is None:
+            rows = np.arange(len(self.area)) if rows is None else rows
+            return self.to_nodes(lam / self.area, n_nodes, rows)
+        F = self.nodal_forces(lam, n_nodes, rows)
+        M = self.mass[:n_nodes][:, :n_nodes]
+        D = np.asarray(M.sum(axis=1)).ravel()
+        with np.errstate(invalid="ignore", divide="ignore"):
+            p0 = np.where(D > 0, F / D, 0.0)
+            p = np.where(p0 > 0, np.maximum(p0 + (F - M @ p0) / D, 0.0), 0.0)
+            return np.where(D > 0, p, np.nan)
+
+    def tributary_area(self, n_nodes: int) -> np.ndarray:
+        """Slave-surface area A_a = int N_a dA per node [mm^2] (n,), 0 off the slave surfaces."""
+        if self.mass is None:
+            return np.bincount(self.node, weights=self.area, minlength=n_nodes)[:n_nodes]
+        return np.asarray(self.mass[:n_nodes][:, :n_nodes].sum(axis=1)).ravel()
 
 
 def _faces(mesh: HexMesh, name: str, field: str) -> np.ndarray:
@@ -168,6 +203,20 @@ def _slave_points(mesh: HexMesh, fs: np.ndarray, order: int):
             (n / dA[..., None]).reshape(-1, 3), np.repeat(h_face, q))
 
 
+def surface_mass(points: np.ndarray, faces: np.ndarray) -> sp.csr_matrix:
+    """Consistent mass M_ab = int N_a N_b dA of bilinear faces (f, 4) [mm^2], 2 x 2 Gauss points; (n, n)."""
+    g, wg = np.polynomial.legendre.leggauss(2)
+    xi, eta = (a.ravel() for a in np.meshgrid(g, g, indexing="ij"))
+    N, dxi, deta = bilinear(xi, eta)
+    X = points[faces]
+    dA = np.linalg.norm(np.cross(np.einsum("qa,fai->fqi", dxi, X), np.einsum("qa,fai->fqi", deta, X)), axis=-1)
+    Me = np.einsum("fq,q,qa,qb->fab", dA, np.outer(wg, wg).ravel(), N, N)
+    rows = np.repeat(faces, 4, axis=1).ravel()
+    cols = np.tile(faces, (1, 4)).ravel()
+    n = len(points)
+    return sp.csr_matrix((Me.ravel(), (rows, cols)), shape=(n, n))
+
+
 MAX_MASTER_COARSENESS = 1.3
 
 
@@ -189,7 +238,8 @@ def _check_master_resolution(mesh, pair, fs, fm):
                          f"measured {ratio:.2f}: exchange slave and master, or refine the master")
 
 
-def contact_set(mesh: HexMesh, pairs: tuple[ContactPair, ...], E_cell: np.ndarray, factor: float, order: int = 2) -> ContactSet:
+def contact_set(mesh: HexMesh, pairs: tuple[ContactPair, ...], E_cell: np.ndarray, factor: float, order: int = 2,
+                points: str = "nodes") -> ContactSet:
     """One constraint per slave node of every pair: gaps, gap gradients, normals, areas, penalties.
 
     order 0: the node projected on the master (node-to-surface); order n >= 2: the n x n Gauss
@@ -241,7 +291,13 @@ def contact_set(mesh: HexMesh, pairs: tuple[ContactPair, ...], E_cell: np.ndarra
         cols = np.concatenate([3 * snodes[:, :, None] + np.arange(3), 3 * mnodes[:, :, None] + np.arange(3)], axis=1).ravel()
         vals = np.concatenate([sw[:, :, None] * nm[:, None, :], -N[:, :, None] * nm[:, None, :]], axis=1).ravel()
         G = sp.csr_matrix((vals, (rows, cols)), shape=(len(keep), n_dof))
-        if order > 0:
+        shape = mass = None
+        if order > 0 and points == "gauss":
+            shape = sp.csr_matrix((sw.ravel(), (snodes.ravel(), np.repeat(np.arange(len(keep)), snodes.shape[1]))),
+                                  shape=(mesh.n_points, len(keep)))
+            mass = surface_mass(mesh.points, mesh.cells[fs[:, 0][:, None], HEX_FACES[fs[:, 1]]])
+            snodes = snodes[np.arange(len(keep)), np.argmax(sw, axis=1)][:, None]
+        elif order > 0:
             # averaged gap per slave node: g_a = int N_a g dA / int N_a dA over the Gauss points
             nodes, inv = np.unique(snodes, return_inverse=True)
             M = sp.csr_matrix(((sw * area[:, None]).ravel(), (inv.ravel(), np.repeat(np.arange(len(keep)), 4))),
@@ -259,13 +315,60 @@ def contact_set(mesh: HexMesh, pairs: tuple[ContactPair, ...], E_cell: np.ndarra
             seed[dist <= max(pair.contact_radius, dist.min())] = True
         elif len(g0):
             seed[g0 <= g0.min() + 1e-9] = True
+        if shape is None:
+            shape = sp.csr_matrix((np.ones(len(g0)), (snodes[:, 0], np.arange(len(g0)))), shape=(mesh.n_points, len(g0)))
         parts.append(dict(pair=np.full(len(g0), ip), node=snodes[:, 0], area=area, normal=nm, gap0=g0, penalty=eps, G=G,
-                          candidate=(g0 < pair.search_gap) | seed, seed=seed))
+                          candidate=(g0 < pair.search_gap) | seed, seed=seed, shape=shape, mass=mass))
     shapes = {"pair": (0,), "node": (0,), "area": (0,), "normal": (0, 3), "gap0": (0,), "penalty": (0,), "candidate": (0,), "seed": (0,)}
     cat = {key: np.concatenate([p[key] for p in parts]) if parts else np.zeros(shp) for key, shp in shapes.items()}
     G = sp.vstack([p["G"] for p in parts], format="csr") if parts else sp.csr_matrix((0, n_dof))
+    shape = sp.hstack([p["shape"] for p in parts], format="csr") if parts else sp.csr_matrix((mesh.n_points, 0))
+    masses = [p["mass"] for p in parts if p["mass"] is not None]
+    mass = None if not masses else sum(masses[1:], masses[0]).tocsr()
     return ContactSet(cat["pair"].astype(np.int64), cat["node"].astype(np.int64), cat["area"], cat["normal"], cat["gap0"],
-                      cat["penalty"], G, cat["candidate"].astype(bool), cat["seed"].astype(bool))
+                      cat["penalty"], G, cat["candidate"].astype(bool), cat["seed"].astype(bool), shape, mass)
+
+
+@dataclass(frozen=True)
+class ContactPatch:
+    """Hertz-equivalent contact patch of nodal forces (module docstring, "Patch"): force [N], centre [mm],
+    semi-axes a >= b [mm] and their unit directions."""
+
+    force: float
+    centre: tuple[float, float, float]
+    semi_axes: tuple[float, float]
+    directions: tuple[tuple[float, float, float], tuple[float, float, float]]
+
+
+PATCH_FACTORS = {"point": (5.0, 5.0), "line": (3.0, 4.0)}
+
+
+def contact_patch(points: np.ndarray, forces: np.ndarray, normal, centre=None, kind: str = "point") -> ContactPatch:
+    """Semi-axes of the Hertz pressure with the same resultant and second moments as the nodal forces.
+
+    points (n, 3) [mm], forces (n,) >= 0 [N], normal (3,) the common normal; ``centre`` [mm]
+    (default the force centroid; give the symmetry point for a half or quarter model); ``kind``
+    'point' (semi-ellipsoid: a^2 = 5 mu) or 'line' (semi-ellipse across, uniform along: b^2 = 4 mu,
+    half-length^2 = 3 mu), mu the eigenvalues of the tangential second moment about the centre.
+    """
+    if kind not in PATCH_FACTORS:
+        raise InputError("kind", kind, "'point' or 'line'")
+    F = np.clip(np.asarray(forces, float), 0.0, None)
+    P = float(F.sum())
+    if P <= 0.0:
+        nan = float("nan")
+        return ContactPatch(0.0, (nan, nan, nan), (0.0, 0.0), ((nan,) * 3, (nan,) * 3))
+    x = np.asarray(points, float)
+    c = (F @ x) / P if centre is None else np.asarray(centre, float)
+    n = np.asarray(normal, float) / np.linalg.norm(normal)
+    d = x - c
+    d -= np.outer(d @ n, n)  # tangential offsets
+    S = np.einsum("p,pi,pj->ij", F, d, d) / P
+    mu, vec = np.linalg.eigh(S)  # ascending; the smallest is along the normal
+    fa, fb = PATCH_FACTORS[kind]
+    a, b = np.sqrt(fa * max(mu[2], 0.0)), np.sqrt(fb * max(mu[1], 0.0))
+    return ContactPatch(P, tuple(float(v) for v in c), (float(a), float(b)),
+                        (tuple(float(v) for v in vec[:, 2]), tuple(float(v) for v in vec[:, 1])))
 
 
 @dataclass(frozen=True, eq=False)
@@ -334,8 +437,11 @@ def active_set(W, B, H, ghat, fhat, k, active0, max_iterations: int, h_scale) ->
     raise ConvergenceError("contact active set", f"{int(changed.sum())} nodes still switching", viol, max_iterations)
 
 
-def penalty_active_set(W, B, H, ghat, fhat, k, area, active0, opts: ContactOptions, h_scale) -> ActiveSetSolution:
-    """Active set, with the penalty raised until penetration <= tolerance, then the doubling check."""
+def penalty_active_set(W, B, H, ghat, fhat, k, area, active0, opts: ContactOptions, h_scale, peak=None) -> ActiveSetSolution:
+    """Active set, with the penalty raised until penetration <= tolerance, then the doubling check.
+
+    ``peak(lam)`` [MPa]: the peak pressure the doubling check compares (default max lambda / area)."""
+    peak = peak or (lambda lam: float(np.max(lam / area)))
     scale = 1.0
     sol = active_set(W, B, H, ghat, fhat, k, active0, opts.max_iterations, h_scale)
     pen = float(np.max(-sol.gap[sol.active], initial=0.0))
@@ -351,8 +457,7 @@ def penalty_active_set(W, B, H, ghat, fhat, k, area, active0, opts: ContactOptio
     if opts.penalty_check and sol.active.any():
         for _ in range(8):
             sol2 = active_set(W, B, H, ghat, fhat, 2.0 * scale * k, sol.active, opts.max_iterations, h_scale)
-            p1 = float(np.max(sol.lam / area))
-            p2 = float(np.max(sol2.lam / area))
+            p1, p2 = peak(sol.lam), peak(sol2.lam)
             change = abs(p2 - p1) / p1
             if change < opts.penalty_check_tol:
                 break

@@ -182,8 +182,11 @@ class ContactOptions:
     penalty_check: bool = True
     penalty_check_tol: float = 0.01
     quadrature: int = 2
+    points: str = "gauss"
 
     def __post_init__(self):
+        if self.points not in ("nodes", "gauss"):
+            raise InputError("contact.points", self.points, "'nodes' (averaged gap per slave node) or 'gauss' (one per Gauss point)")
         if self.quadrature not in (0, 2, 3, 4):
             raise InputError("contact.quadrature", self.quadrature, "0 (slave nodes) or 2, 3, 4 (n x n Gauss points per slave face)",
                              "one point per face leaves the averaged gaps of neighbouring nodes dependent")

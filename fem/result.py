@@ -41,6 +41,7 @@ class PairResult:
     max_pressure: float
     active_nodes: int
     candidates: int
+    semi_axes: tuple[float, float] = (0.0, 0.0)  # Hertz-equivalent a >= b of the nodal forces [mm] (fem.contact.contact_patch)
 
 
 @dataclass(frozen=True)
@@ -127,7 +128,7 @@ class FEResult:
             "solve_s": float(self.info.timings.get("total_s", float("nan"))),
             "load_share": self.load_share(),
             "pairs": {p.name: {"group": p.group, "force_n": p.force, "area_mm2": p.area, "max_pressure_mpa": p.max_pressure,
-                               "active_nodes": p.active_nodes} for p in pairs},
+                               "active_nodes": p.active_nodes, "semi_axes_mm": list(p.semi_axes)} for p in pairs},
             "fillet": self.fillet_stress(),
             "solver": self.info.solver,
             "element": self.info.element,

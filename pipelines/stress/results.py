@@ -102,7 +102,8 @@ def pair_results(mesh: HexMesh, model: FEModel, r: FEResult) -> list[dict]:
         master_edge = float(pressure_at(mesh.points[bm], mesh, cp.slave, p, tol=max(0.02, 0.1 * h)).max(initial=0.0))
         out.append({"name": pr.name, "group": pr.group, "slave": cp.slave, "master": cp.master, "force_n": pr.force,
                     "area_mm2": pr.area, "max_pressure_mpa": pr.max_pressure, "active_nodes": pr.active_nodes,
-                    "candidates": pr.candidates, "edge_pressure_mpa": max(slave_edge, master_edge),
+                    "candidates": pr.candidates, "semi_axes_mm": [float(x) for x in pr.semi_axes],
+                    "edge_pressure_mpa": max(slave_edge, master_edge),
                     "slave_edge_pressure_mpa": slave_edge, "master_edge_pressure_mpa": master_edge})
     return out
 
@@ -177,6 +178,12 @@ def kinematic_ratio(scene: Scene, interfaces: dict) -> float:
                  / sum(w / _mesh_ratio(i, interfaces) for i, w in zip(ring, t)))
 
 
+def _peak_semi_axes(rows: list[dict]) -> list[float]:
+    """Hertz-equivalent semi-axes a >= b [mm] of the pair carrying the peak pressure (fem.contact.contact_patch)."""
+    row = max(rows, key=lambda x: x["max_pressure_mpa"], default=None)
+    return [0.0, 0.0] if row is None else list(row["semi_axes_mm"])
+
+
 def _kind(k) -> str:
     return ContactKind.names.get(int(k), str(k))
 
@@ -216,6 +223,7 @@ def summarize(scene: Scene, mesh: HexMesh, model: FEModel, r: FEResult) -> dict:
         "max_contact_pressure_mpa": float(pk),
         "contact_force_n": interfaces[first]["force_n"],
         "contact_area_mm2": interfaces[first]["contact_area_mm2"],
+        "contact_semi_axes_mm": _peak_semi_axes(rows),
         "max_fillet_stress_mpa": fil_p,
         "max_fillet_von_mises_mpa": fil_vm,
         "max_fillet_set": fil_at,
