@@ -163,11 +163,13 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
 
     r = K @ uf - f
     pressure = np.zeros(mesh.n_points)
+    force_nodes = np.zeros(mesh.n_points)
     gap_nodes = np.full(mesh.n_points, np.nan)
     pairs = []
     if cs is not None:
         r -= cs.G.T @ lam_all
         pressure = np.nan_to_num(cs.pressure(lam_all, mesh.n_points))
+        force_nodes = cs.nodal_forces(lam_all, mesh.n_points)
         gap_nodes = cs.to_nodes(gap_all, mesh.n_points)
         A_nodes = cs.tributary_area(mesh.n_points)
         for ip, pair in enumerate(model.contacts):
@@ -187,10 +189,12 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
     t["total_s"] = time.perf_counter() - t0
     info = SolveInfo(
         dofs=3 * mesh.n_points, reduced_dofs=red.n, schur_dofs=len(C), solver=sysm.method, element=model.solver.element,
-        candidates=len(cand), active=int(sol.active.sum()) if sol is not None else 0,
+        candidates=len(cand), active=(int(sol.active.sum()) if cs.mass is None else int(np.count_nonzero(pressure > 0)))
+        if sol is not None else 0,
         iterations=sol.iterations if sol is not None else 0, penalty_scale=sol.scale if sol is not None else 1.0,
         penalty_change=sol.penalty_change if sol is not None else float("nan"),
         max_penetration=float(np.max(-sol.gap[sol.active], initial=0.0)) if sol is not None else 0.0,
         timings=t,
     )
-    return FEResult(mesh, model, u, s_nodes, vm, pr, pressure, gap_nodes, tuple(pairs), reaction, red.rigid_motion(q), info)
+    return FEResult(mesh, model, u, s_nodes, vm, pr, pressure, gap_nodes, tuple(pairs), reaction, red.rigid_motion(q), info,
+                    force_nodes)

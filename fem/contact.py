@@ -343,13 +343,14 @@ class ContactPatch:
 PATCH_FACTORS = {"point": (5.0, 5.0), "line": (3.0, 4.0)}
 
 
-def contact_patch(points: np.ndarray, forces: np.ndarray, normal, centre=None, kind: str = "point") -> ContactPatch:
+def contact_patch(points: np.ndarray, forces: np.ndarray, normal, centre=None, kind: str = "point", major=None) -> ContactPatch:
     """Semi-axes of the Hertz pressure with the same resultant and second moments as the nodal forces.
 
     points (n, 3) [mm], forces (n,) >= 0 [N], normal (3,) the common normal; ``centre`` [mm]
-    (default the force centroid; give the symmetry point for a half or quarter model); ``kind``
+    (default the force centroid; give the symmetry point of a half or quarter model); ``kind``
     'point' (semi-ellipsoid: a^2 = 5 mu) or 'line' (semi-ellipse across, uniform along: b^2 = 4 mu,
-    half-length^2 = 3 mu), mu the eigenvalues of the tangential second moment about the centre.
+    half-length^2 = 3 mu), mu the second moments about the centre along the axes. The axes are the
+    eigenvectors of the tangential second-moment tensor, or ``major`` (3,) and n x major when given.
     """
     if kind not in PATCH_FACTORS:
         raise InputError("kind", kind, "'point' or 'line'")
@@ -364,11 +365,17 @@ def contact_patch(points: np.ndarray, forces: np.ndarray, normal, centre=None, k
     d = x - c
     d -= np.outer(d @ n, n)  # tangential offsets
     S = np.einsum("p,pi,pj->ij", F, d, d) / P
-    mu, vec = np.linalg.eigh(S)  # ascending; the smallest is along the normal
+    if major is None:
+        mu, vec = np.linalg.eigh(S)  # ascending; the smallest is along the normal
+        e1, e2 = vec[:, 2], vec[:, 1]
+    else:
+        e1 = np.asarray(major, float) - (np.asarray(major, float) @ n) * n
+        e1 /= np.linalg.norm(e1)
+        e2 = np.cross(n, e1)
     fa, fb = PATCH_FACTORS[kind]
-    a, b = np.sqrt(fa * max(mu[2], 0.0)), np.sqrt(fb * max(mu[1], 0.0))
+    a, b = np.sqrt(fa * max(float(e1 @ S @ e1), 0.0)), np.sqrt(fb * max(float(e2 @ S @ e2), 0.0))
     return ContactPatch(P, tuple(float(v) for v in c), (float(a), float(b)),
-                        (tuple(float(v) for v in vec[:, 2]), tuple(float(v) for v in vec[:, 1])))
+                        (tuple(float(v) for v in e1), tuple(float(v) for v in e2)))
 
 
 @dataclass(frozen=True, eq=False)

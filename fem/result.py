@@ -78,6 +78,7 @@ class FEResult:
     reaction: np.ndarray  # (n, 3) support forces [N]
     rigid_motion: dict  # body -> (translation [mm], rotation [rad])
     info: SolveInfo
+    contact_force: np.ndarray | None = None  # (n,) normal contact force per slave node [N] (0 elsewhere)
 
     def load_share(self) -> dict:
         """Fractions of the total normal contact force per pair (tooth) and per group (member)."""
@@ -153,6 +154,7 @@ class FEResult:
             "max_principal": self.principal[:, 0],
             "min_principal": self.principal[:, 2],
             "contact_pressure": self.contact_pressure,
+            "contact_force": np.zeros(len(self.contact_pressure)) if self.contact_force is None else self.contact_force,
             "contact_gap": np.nan_to_num(self.contact_gap, nan=-1.0),
             "reaction": self.reaction,
         }
