@@ -66,6 +66,12 @@ def _external_load(mesh: HexMesh, model: FEModel) -> np.ndarray:
     return f
 
 
+def _closed_area(cs, sel, gap, sol) -> float:
+    """Area of the Gauss points of a pair whose gap is closed to within the solution's largest penetration [mm^2]."""
+    tol = float(np.max(-sol.gap[sol.active], initial=0.0)) if sol is not None else 0.0
+    return float(cs.area[sel][gap[sel] <= tol].sum())
+
+
 def solve(mesh: HexMesh, model: FEModel) -> FEResult:
     """Solve the model on the mesh; raises InputError, ConvergenceError or GearfeError."""
     t = {}
@@ -181,7 +187,8 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
             nrm = fv if np.linalg.norm(fv) > 0 else cs.normal[sel].sum(axis=0)
             patch = contact_patch(mesh.points[act], F_pair[act], nrm) if len(act) and np.linalg.norm(nrm) > 0 else None
             pairs.append(PairResult(pair.name, pair.group, float(lam_all[sel].sum()), tuple(float(x) for x in fv),
-                                    float(A_nodes[act].sum()), float(p_pair.max(initial=0.0)), len(act),
+                                    float(_closed_area(cs, sel, gap_all, sol) if cs.mass is not None else A_nodes[act].sum()),
+                                    float(p_pair.max(initial=0.0)), len(act),
                                     int(cs.candidate[sel].sum()), patch.semi_axes if patch else (0.0, 0.0)))
     reaction = np.zeros((mesh.n_points, 3))
     held = np.unique(np.concatenate(list(red.support_nodes.values())))

@@ -1,9 +1,13 @@
 """Results of a solve: nodal fields, contact per pair and member, reactions, timings, VTU output.
 
-Contact pressure is nodal (slave nodes): the normal contact force of the node divided by its
-tributary area [MPa]. The contact area of a pair is the sum of the tributary areas of its active
-nodes [mm^2]; its force is the sum of their normal forces lambda [N]. Load share is each pair's (tooth's) and each group's (member's)
-fraction of the total normal contact force.
+Contact pressure is nodal (slave nodes) [MPa]: with the default Gauss-point constraints the
+projection of the nodal normal forces described in ``fem.contact`` ("Pressure"); with node
+constraints the node's force divided by its tributary area. ``contact_force`` holds the nodal
+normal forces [N]. The contact area of a pair [mm^2] is the area of its closed Gauss points (gap
+below the solution's largest penetration; node constraints: the tributary areas of the active
+nodes); its force is the sum of the normal forces lambda [N]; ``semi_axes`` are the Hertz-equivalent
+semi-axes of its nodal forces (``fem.contact.contact_patch``). Load share is each pair's (tooth's)
+and each group's (member's) fraction of the total normal contact force.
 
 Support reactions are the nodal forces the supports exert, r = K u - f - G^T lambda, at nodes
 held by a Fixed set or tied to a reference node; ``support_torque`` is their moment about an
