@@ -33,7 +33,7 @@ from tca.errors import ConvergenceError, InputError
 from . import stress as st
 from .assembly import assemble_blocks, surface_load
 from .constraints import known_names, reduction
-from .contact import contact_set, penalty_active_set
+from .contact import contact_patch, contact_set, penalty_active_set
 from .elements import hex8_matrices
 from .linsolve import schur_system
 from .model import FEModel
@@ -66,6 +66,12 @@ def _external_load(mesh: HexMesh, model: FEModel) -> np.ndarray:
     return f
 
 
+def _closed_area(cs, sel, gap, sol) -> float:
+    """Area of the Gauss points of a pair whose gap is closed to within the solution's largest penetration [mm^2]."""
+    tol = float(np.max(-sol.gap[sol.active], initial=0.0)) if sol is not None else 0.0
+    return float(cs.area[sel][gap[sel] <= tol].sum())
+
+
 def solve(mesh: HexMesh, model: FEModel) -> FEResult:
     """Solve the model on the mesh; raises InputError, ConvergenceError or GearfeError."""
     t = {}
@@ -85,7 +91,8 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
     t["reduction_s"] = time.perf_counter() - t1
 
     t1 = time.perf_counter()
-    cs = contact_set(mesh, model.contacts, E_c, model.contact.penalty_factor, model.contact.quadrature) if model.contacts else None
+    cs = contact_set(mesh, model.contacts, E_c, model.contact.penalty_factor, model.contact.quadrature,
+                     model.contact.points) if model.contacts else None
     cand = np.flatnonzero(cs.candidate) if cs is not None else np.zeros(0, np.int64)
     k = len(cand)
     n_r = red.n
@@ -119,7 +126,14 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
         seed = cs.seed[cand] if k else np.zeros(0, bool)
         stiff = cs.stiffness[cand] if k else np.zeros(0)
         area = cs.area[cand] if k else np.zeros(0)
-        sol = penalty_active_set(W, B, H, ghat, fhat, stiff, area, seed, model.contact, kdiag)
+        peak = None
+        if k and cs.mass is not None:  # Gauss-point constraints: check the recovered nodal peak
+
+            def peak(lam_c):
+                lam = np.zeros(len(cs.area))
+                lam[cand] = lam_c
+                return float(np.nanmax(cs.pressure(lam, mesh.n_points), initial=0.0))
+        sol = penalty_active_set(W, B, H, ghat, fhat, stiff, area, seed, model.contact, kdiag, peak)
         xC = np.empty(len(C))
         xC[iF] = sol.u_free
         xC[ig] = -sol.lam  # bordered unknowns are -lambda: K u + G^T (-lambda) = f
@@ -155,31 +169,39 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
 
     r = K @ uf - f
     pressure = np.zeros(mesh.n_points)
+    force_nodes = np.zeros(mesh.n_points)
     gap_nodes = np.full(mesh.n_points, np.nan)
     pairs = []
     if cs is not None:
         r -= cs.G.T @ lam_all
-        p_all = lam_all / cs.area
-        pressure = np.nan_to_num(cs.to_nodes(p_all, mesh.n_points))
+        pressure = np.nan_to_num(cs.pressure(lam_all, mesh.n_points))
+        force_nodes = cs.nodal_forces(lam_all, mesh.n_points)
         gap_nodes = cs.to_nodes(gap_all, mesh.n_points)
+        A_nodes = cs.tributary_area(mesh.n_points)
         for ip, pair in enumerate(model.contacts):
             sel = np.flatnonzero(cs.pair == ip)
-            act = sel[lam_all[sel] > 0.0]
-            fv = (cs.normal[sel] * lam_all[sel, None]).sum(axis=0)
-            p_pair = cs.to_nodes(p_all, mesh.n_points, rows=sel)
+            fv = np.asarray((cs.normal[sel] * lam_all[sel, None]).sum(axis=0))
+            p_pair = np.nan_to_num(cs.pressure(lam_all, mesh.n_points, rows=sel))
+            act = np.flatnonzero(p_pair > 0.0)
+            F_pair = cs.nodal_forces(lam_all, mesh.n_points, rows=sel)
+            nrm = fv if np.linalg.norm(fv) > 0 else cs.normal[sel].sum(axis=0)
+            patch = contact_patch(mesh.points[act], F_pair[act], nrm) if len(act) and np.linalg.norm(nrm) > 0 else None
             pairs.append(PairResult(pair.name, pair.group, float(lam_all[sel].sum()), tuple(float(x) for x in fv),
-                                    float(cs.area[act].sum()), float(np.nanmax(p_pair, initial=0.0)), len(act),
-                                    int(cs.candidate[sel].sum())))
+                                    float(_closed_area(cs, sel, gap_all, sol) if cs.mass is not None else A_nodes[act].sum()),
+                                    float(p_pair.max(initial=0.0)), len(act),
+                                    int(cs.candidate[sel].sum()), patch.semi_axes if patch else (0.0, 0.0)))
     reaction = np.zeros((mesh.n_points, 3))
     held = np.unique(np.concatenate(list(red.support_nodes.values())))
     reaction[held] = r.reshape(-1, 3)[held]
     t["total_s"] = time.perf_counter() - t0
     info = SolveInfo(
         dofs=3 * mesh.n_points, reduced_dofs=red.n, schur_dofs=len(C), solver=sysm.method, element=model.solver.element,
-        candidates=len(cand), active=int(sol.active.sum()) if sol is not None else 0,
+        candidates=len(cand), active=(int(sol.active.sum()) if cs.mass is None else int(np.count_nonzero(pressure > 0)))
+        if sol is not None else 0,
         iterations=sol.iterations if sol is not None else 0, penalty_scale=sol.scale if sol is not None else 1.0,
         penalty_change=sol.penalty_change if sol is not None else float("nan"),
         max_penetration=float(np.max(-sol.gap[sol.active], initial=0.0)) if sol is not None else 0.0,
         timings=t,
     )
-    return FEResult(mesh, model, u, s_nodes, vm, pr, pressure, gap_nodes, tuple(pairs), reaction, red.rigid_motion(q), info)
+    return FEResult(mesh, model, u, s_nodes, vm, pr, pressure, gap_nodes, tuple(pairs), reaction, red.rigid_motion(q), info,
+                    force_nodes)

@@ -168,9 +168,10 @@ class ContactPair:
 class ContactOptions:
     """Penalty and active-set settings.
 
-    Contact constraints are one per slave node. ``quadrature`` = 0: the node's own gap
-    (node-to-surface); n = 2, 3, 4: the gap averaged over the node's faces with n x n Gauss points
-    each (segment-to-segment; smooth pressure on non-matching meshes). The penalty per unit area is
+    ``quadrature`` = 0: one constraint per slave node, its own gap (node-to-surface); n = 2, 3, 4:
+    n x n Gauss points per slave face, each a constraint (``points = 'gauss'``, default: the
+    contact edge resolved to a Gauss point, issue 14) or their gaps averaged per slave node
+    (``points = 'nodes'``, issue 6). The penalty per unit area is
     ``penalty_factor * E / h`` [MPa/mm], h the thickness of the slave element under the point. ``max_penetration`` [mm] bounds the penalty penetration;
     ``penalty_check`` re-solves with the penalty doubled and requires the peak pressure to change
     by less than ``penalty_check_tol`` (relative).
@@ -182,8 +183,11 @@ class ContactOptions:
     penalty_check: bool = True
     penalty_check_tol: float = 0.01
     quadrature: int = 2
+    points: str = "gauss"
 
     def __post_init__(self):
+        if self.points not in ("nodes", "gauss"):
+            raise InputError("contact.points", self.points, "'nodes' (averaged gap per slave node) or 'gauss' (one per Gauss point)")
         if self.quadrature not in (0, 2, 3, 4):
             raise InputError("contact.quadrature", self.quadrature, "0 (slave nodes) or 2, 3, 4 (n x n Gauss points per slave face)",
                              "one point per face leaves the averaged gaps of neighbouring nodes dependent")

@@ -1,9 +1,13 @@
 """Results of a solve: nodal fields, contact per pair and member, reactions, timings, VTU output.
 
-Contact pressure is nodal (slave nodes): the normal contact force of the node divided by its
-tributary area [MPa]. The contact area of a pair is the sum of the tributary areas of its active
-nodes [mm^2]; its force is the sum of their normal forces lambda [N]. Load share is each pair's (tooth's) and each group's (member's)
-fraction of the total normal contact force.
+Contact pressure is nodal (slave nodes) [MPa]: with the default Gauss-point constraints the
+projection of the nodal normal forces described in ``fem.contact`` ("Pressure"); with node
+constraints the node's force divided by its tributary area. ``contact_force`` holds the nodal
+normal forces [N]. The contact area of a pair [mm^2] is the area of its closed Gauss points (gap
+below the solution's largest penetration; node constraints: the tributary areas of the active
+nodes); its force is the sum of the normal forces lambda [N]; ``semi_axes`` are the Hertz-equivalent
+semi-axes of its nodal forces (``fem.contact.contact_patch``). Load share is each pair's (tooth's)
+and each group's (member's) fraction of the total normal contact force.
 
 Support reactions are the nodal forces the supports exert, r = K u - f - G^T lambda, at nodes
 held by a Fixed set or tied to a reference node; ``support_torque`` is their moment about an
@@ -41,6 +45,7 @@ class PairResult:
     max_pressure: float
     active_nodes: int
     candidates: int
+    semi_axes: tuple[float, float] = (0.0, 0.0)  # Hertz-equivalent a >= b of the nodal forces [mm] (fem.contact.contact_patch)
 
 
 @dataclass(frozen=True)
@@ -77,6 +82,7 @@ class FEResult:
     reaction: np.ndarray  # (n, 3) support forces [N]
     rigid_motion: dict  # body -> (translation [mm], rotation [rad])
     info: SolveInfo
+    contact_force: np.ndarray | None = None  # (n,) normal contact force per slave node [N] (0 elsewhere)
 
     def load_share(self) -> dict:
         """Fractions of the total normal contact force per pair (tooth) and per group (member)."""
@@ -127,7 +133,7 @@ class FEResult:
             "solve_s": float(self.info.timings.get("total_s", float("nan"))),
             "load_share": self.load_share(),
             "pairs": {p.name: {"group": p.group, "force_n": p.force, "area_mm2": p.area, "max_pressure_mpa": p.max_pressure,
-                               "active_nodes": p.active_nodes} for p in pairs},
+                               "active_nodes": p.active_nodes, "semi_axes_mm": list(p.semi_axes)} for p in pairs},
             "fillet": self.fillet_stress(),
             "solver": self.info.solver,
             "element": self.info.element,
@@ -152,6 +158,7 @@ class FEResult:
             "max_principal": self.principal[:, 0],
             "min_principal": self.principal[:, 2],
             "contact_pressure": self.contact_pressure,
+            "contact_force": np.zeros(len(self.contact_pressure)) if self.contact_force is None else self.contact_force,
             "contact_gap": np.nan_to_num(self.contact_gap, nan=-1.0),
             "reaction": self.reaction,
         }

@@ -27,8 +27,13 @@ Run: ``python -m pipelines.bench.stress --out DIR [--quick]`` (``make bench`` ru
    contact: :func:`pipelines.bench.fem.linear_solve_times`, the synthetic benchmark's method). The
    contact solve = contact setup + bordered factorization + active set and substitutions
    (``FEResult.info.timings``), as in ``pipelines.bench.fem``.
-5. Hertz: line and point contact from :mod:`fem.verification` at a few densities (the full
-   study is the ``fem`` area of ``make bench``).
+5. Hertz: line and point contact from :mod:`fem.verification` at a few densities, both contact
+   constraints (the full study is the ``fem`` area of ``make bench``).
+6. Contact pressure (issue 14): every level again with today's averaged nodal gaps
+   (``FESettings.points = 'nodes'``), beside the default Gauss-point constraints; the peak pressure
+   (recovered, and lumped without the Jacobi step: they converge from above and below and bracket
+   the limit at the finest level), the Hertz-equivalent minor semi-axis b of the nodal forces, their
+   errors, and the two methods run alternately at the default refine 1 for DOF and time.
 """
 
 from __future__ import annotations
@@ -45,26 +50,25 @@ from pathlib import Path
 
 import numpy as np
 
-from fem import solve
 from fem.model import FEModel, Rigid
-from fem.verification import hertz_line, hertz_point
 from tca.errors import InputError
 
-from pipelines.bench.fem import linear_solve_times
+from pipelines.bench.fem import hertz_row, linear_solve_times
 from pipelines.cases.reader import CASES_DIR, load_case
 from pipelines.bench.convergence import richardson
 from pipelines.stress.case import StressCase, read_stress_case
 from pipelines.stress.run import build_scene, run_stress
 from pipelines.stress.model import mesh_scene, solve_scene
 
-__all__ = ["main", "run_level", "errors_of", "choose_refine", "speed_check", "hertz_checks", "CASE", "FULL", "QUICK",
-           "QUANTITIES", "TOL"]
+__all__ = ["main", "run_level", "errors_of", "choose_refine", "speed_check", "hertz_checks", "pressure_study", "CASE", "FULL",
+           "QUICK", "QUANTITIES", "TOL", "WIDTH_TOL"]
 
 CASE = CASES_DIR / "stress_pair_small.toml"
 RATIO = math.sqrt(2.0)
 FULL = tuple(0.5 * RATIO**k for k in range(5))  # 0.5 ... 2: 34k ... 515k DOF
 QUICK = tuple(0.25 * RATIO**k for k in range(1, 4))  # 0.35, 0.5, 0.71: < 65k DOF
 TOL = 0.05
+WIDTH_TOL = 0.10  # issue 14: contact half-width at the default within 10 %
 TARGET_DOF = 150_000
 QUANTITIES = {"max_von_mises_mpa": "max von Mises", "max_contact_pressure_mpa": "peak contact pressure",
               "max_fillet_stress_mpa": "max fillet stress"}
@@ -79,16 +83,24 @@ def _refined(case: StressCase, refine: float) -> StressCase:
     return dataclasses.replace(case, mesh=dataclasses.replace(case.mesh, refine=refine))
 
 
-def run_level(case: StressCase, refine: float) -> dict:
-    """One refinement: DOF, stage times [s], stresses [MPa], contact force [N], Hertz estimate."""
+def _method(case: StressCase, points: str) -> StressCase:
+    return dataclasses.replace(case, fe=dataclasses.replace(case.fe, points=points))
+
+
+def run_level(case: StressCase, refine: float, points: str = "gauss") -> dict:
+    """One refinement: DOF, stage times [s], stresses [MPa], contact force [N], semi-axes [mm], Hertz estimate.
+
+    ``points``: the contact constraints, 'gauss' (default, issue 14) or 'nodes' (issue 6)."""
     with tempfile.TemporaryDirectory() as tmp:  # result.vtu is large and not needed here
-        s = run_stress(_refined(case, refine), Path(tmp))
+        s = run_stress(_refined(_method(case, points), refine), Path(tmp))
     itf = next(iter(s["interfaces"].values()))
     m = itf["members"]["a"]
     return {"refine": refine, "dofs": s["dofs"], "elements": s["elements"],
             **{k: s[k] for k in ("tca_s", "mesh_s", "solve_s", "results_s", "total_s", "cpu_s")},
             **{k: s[k] for k in QUANTITIES}, "max_von_mises_body": s["max_von_mises_body"],
-            "contact_force_n": s["contact_force_n"], "contact_area_mm2": s["contact_area_mm2"],
+            "contact_force_n": s["contact_force_n"], "contact_area_mm2": s["contact_area_mm2"], "points": points,
+            "semi_axes_mm": s["contact_semi_axes_mm"], "contact_half_width_mm": s["contact_semi_axes_mm"][1],
+            "lumped_pressure_mpa": s["max_contact_pressure_lumped_mpa"],
             "hertz": m["hertz_estimate"], "mesh_sizes_mm": m["mesh_sizes_mm"],
             "load_share": itf["load_share"]["teeth"], "torque_balance_error": s["torque_balance_error"],
             "fe": s["fe"], "load": os.getloadavg()[0]}
@@ -183,21 +195,90 @@ def speed_check(case: StressCase, refine: float, repeats: int) -> dict:
 def hertz_checks(quick: bool) -> dict:
     """Hertz line and point contact (fem.verification): peak pressure and size errors at a few densities."""
     line, point = [], []
-    for n in ((6,) if quick else (3, 6, 10)):
-        mesh, model, ref = hertz_line(elements_per_halfwidth=n)
-        w0 = time.perf_counter()
-        r = solve(mesh, model)
-        p = r.pairs[0]
-        line.append({"per_halfwidth": n, "dofs": r.info.dofs, "wall_s": time.perf_counter() - w0,
-                     "p_err": p.max_pressure / ref["p0"] - 1, "a_err": p.area / ref["thickness"] / ref["a"] - 1})
-    for n in ((4,) if quick else (4, 6)):
-        mesh, model, ref = hertz_point(elements_per_radius=n)
-        w0 = time.perf_counter()
-        r = solve(mesh, model)
-        p = r.pairs[0]
-        point.append({"per_radius": n, "dofs": r.info.dofs, "wall_s": time.perf_counter() - w0,
-                      "p_err": p.max_pressure / ref["p0"] - 1, "a_err": math.sqrt(4 * p.area / math.pi) / ref["a"] - 1})
+    for points in ("gauss", "nodes"):
+        line.extend(hertz_row("line", n, points) for n in ((3,) if quick else (3, 6, 10)))
+        point.extend(hertz_row("point", n, points) for n in ((3,) if quick else (3, 4, 6)))
     return {"line": line, "point": point}
+
+
+def _default_index(rows) -> int:
+    """The level at the default refine 1 (the middle level when it is not run, --quick)."""
+    return next((i for i, r in enumerate(rows) if abs(r["refine"] - 1.0) < 1e-9), len(rows) // 2)
+
+
+def pressure_study(case: StressCase, rows: list[dict], errs: dict, quick: bool) -> dict:
+    """Issue 14: the default constraints against today's averaged nodal gaps (module docstring, item 6)."""
+    refines = [x["refine"] for x in rows]
+    nodes = []
+    for r in refines:
+        nodes.append(run_level(case, r, "nodes"))
+        x = nodes[-1]
+        print(f"bench_stress: nodes, refine {r:.3f}: {x['dofs']} DOF, {x['total_s']:.1f} s, p {x['max_contact_pressure_mpa']:.1f} MPa",
+              flush=True)
+    out = {"nodes_levels": nodes,
+           "nodes_errors": errors_of(refines, [x["max_contact_pressure_mpa"] for x in nodes]),
+           "lumped_errors": errors_of(refines, [x["lumped_pressure_mpa"] for x in rows]),
+           "half_width_errors": errors_of(refines, [x["contact_half_width_mm"] for x in rows]),
+           "nodes_half_width_errors": errors_of(refines, [x["contact_half_width_mm"] for x in nodes])}
+    lo, hi = sorted((rows[-1]["lumped_pressure_mpa"], rows[-1]["max_contact_pressure_mpa"]))
+    i = _default_index(rows)
+    p, b = rows[i]["max_contact_pressure_mpa"], rows[i]["contact_half_width_mm"]
+    hz = rows[i]["hertz"]
+    out["bracket"] = [lo, hi]
+    out["default"] = {"index": i, "refine": rows[i]["refine"], "p": p, "p_err": errs["max_contact_pressure_mpa"]["errors"][i],
+                      "p_err_bracket": max(abs(p / lo - 1), abs(p / hi - 1)), "p_hertz": p / hz["p0_mpa"] - 1,
+                      "b": b, "b_err": out["half_width_errors"]["errors"][i], "b_hertz": b / hz["b_mm"] - 1,
+                      "nodes_p": nodes[i]["max_contact_pressure_mpa"], "nodes_p_err": out["nodes_errors"]["errors"][i]}
+    # the two methods on the default model, alternately (the machine is shared: best of two each)
+    runs = [rows[i], nodes[i]] if quick else [run_level(case, rows[i]["refine"], m) for m in ("nodes", "gauss", "nodes", "gauss")]
+    out["side_by_side"] = {m: {"dofs": min(x["dofs"] for x in runs if x["points"] == m),
+                               "total_s": min(x["total_s"] for x in runs if x["points"] == m),
+                               "cpu_s": min(x["cpu_s"] for x in runs if x["points"] == m),
+                               "solve_s": min(x["solve_s"] for x in runs if x["points"] == m),
+                               "runs_s": [x["total_s"] for x in runs if x["points"] == m]} for m in ("nodes", "gauss")}
+    return out
+
+
+def _pressure_section(data: dict) -> list[str]:
+    rows, st = data["levels"], data["pressure"]
+    nodes, d = st["nodes_levels"], st["default"]
+    pe, he = data["errors"]["max_contact_pressure_mpa"], st["half_width_errors"]
+    L = ["", "## 2b. Peak contact pressure and half-width: Gauss-point constraints (default) vs averaged nodal gaps (issue 14)", "",
+         "`gauss` (default since issue 14): one penalty constraint per 2x2 Gauss point of the slave faces, the nodal pressure "
+         "from the nodal forces by a lumped projection plus one Jacobi step of the consistent projection; `lumped`: the same "
+         "solve without that step (nodal force / tributary area); `nodes` (issue 6): the gap averaged per slave node, "
+         "pressure = nodal force / tributary area. Half-width b: of the Hertz pressure with the same load and second moments "
+         "(`fem.contact.contact_patch`). Errors against each sequence's reference (Richardson when asymptotic, else the "
+         "finest level).", "",
+         "| refine | DOF | total [s] gauss | total [s] nodes | p gauss | error | p lumped | p nodes | error | p gauss / Hertz − 1 | "
+         "b gauss [mm] | error | b / Hertz b − 1 |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for i, (r, n) in enumerate(zip(rows, nodes)):
+        L.append(f"| {r['refine']:.3f} | {r['dofs']} | {r['total_s']:.1f} | {n['total_s']:.1f} | {r['max_contact_pressure_mpa']:.1f} | "
+                 f"{_pct(pe['errors'][i], '.1%')} | {r['lumped_pressure_mpa']:.1f} | {n['max_contact_pressure_mpa']:.1f} | "
+                 f"{_pct(st['nodes_errors']['errors'][i], '.1%')} | {r['max_contact_pressure_mpa'] / r['hertz']['p0_mpa'] - 1:+.1%} | "
+                 f"{r['contact_half_width_mm']:.4f} | {_pct(he['errors'][i], '.1%')} | "
+                 f"{r['contact_half_width_mm'] / r['hertz']['b_mm'] - 1:+.1%} |")
+    L += ["", "| sequence | observed orders | reference | value |", "|---|---|---|---|"]
+    for label, e in (("p gauss (default)", pe), ("p lumped", st["lumped_errors"]), ("p nodes", st["nodes_errors"]),
+                     ("b gauss [mm]", he), ("b nodes [mm]", st["nodes_half_width_errors"])):
+        L.append(f"| {label} | {', '.join(_p(p) for p in e['orders'])} | {e['method']} | {e['reference']:.4g} |")
+    lo, hi = st["bracket"]
+    sb = st["side_by_side"]
+    L += ["", f"The recovered peak converges from above and the lumped one from below (the Jacobi step removes the lumped "
+          f"projection's O(h²) smoothing): at the finest level they bracket the limit, [{lo:.1f}, {hi:.1f}] MPa.", "",
+          f"Targets (issue 14) at the default refine {d['refine']:.3g}:", "", "| target | measured | met |", "|---|---|---|",
+          f"| peak contact pressure within 5 % of the converged value | {d['p']:.1f} MPa: {_pct(d['p_err'], '.1%')} vs {pe['method']}; "
+          f"at most {d['p_err_bracket']:.1%} from the finest bracket; {d['p_hertz']:+.1%} vs Hertz (today's `nodes`: {d['nodes_p']:.1f} MPa, "
+          f"{_pct(d['nodes_p_err'], '.1%')}) | {'yes' if d['p_err'] is not None and d['p_err'] <= TOL and d['p_err_bracket'] <= TOL else 'no'} |",
+          f"| contact half-width within 10 % | b = {d['b']:.4f} mm: {_pct(d['b_err'], '.1%')} vs {he['method']}; {d['b_hertz']:+.1%} vs Hertz | "
+          f"{'yes' if d['b_err'] is not None and d['b_err'] <= WIDTH_TOL else 'no'} |",
+          f"| model no larger than today's | {sb['gauss']['dofs']} DOF (today's {sb['nodes']['dofs']}) | "
+          f"{'yes' if sb['gauss']['dofs'] <= sb['nodes']['dofs'] else 'no'} |",
+          f"| no slower than today's (best of the alternating runs, same machine state) | total {sb['gauss']['total_s']:.1f} s "
+          f"(runs {', '.join(f'{x:.1f}' for x in sb['gauss']['runs_s'])}) vs today's {sb['nodes']['total_s']:.1f} s "
+          f"(runs {', '.join(f'{x:.1f}' for x in sb['nodes']['runs_s'])}); process {sb['gauss']['cpu_s']:.1f} vs {sb['nodes']['cpu_s']:.1f} s | "
+          f"{'yes' if sb['gauss']['total_s'] <= 1.1 * sb['nodes']['total_s'] else 'no'} (10 % for the load) |"]
+    return L
 
 
 # ---------------------------------------------------------------------------------------------- plots and report
@@ -303,6 +384,8 @@ def write_report(data: dict, out: Path) -> str:
         L.append(f"| {r['refine']:.3f} | {r['dofs']} | {r['total_s']:.2f} | " +
                  " | ".join(_pct(errs[k]["errors"][i], ".1%") for k in QUANTITIES) +
                  f" | {r['max_contact_pressure_mpa'] / r['hertz']['p0_mpa'] - 1:+.1%} |")
+    if "pressure" in data:
+        L += _pressure_section(data)
     L += ["", "![error vs DOF](stress_error_dof.png) ![error vs time](stress_error_time.png)", "",
           "![values](stress_values.png)", "", "## 3. Default refinement", ""]
     p_e = errs["max_contact_pressure_mpa"]
@@ -361,12 +444,16 @@ def write_report(data: dict, out: Path) -> str:
     h = data["hertz"]
     L += ["", "## 5. Hertz benchmarks (fem.verification; the convergence, formulation and penalty studies are in the `fem` "
           "area of `make bench`, `pipelines.bench.fem`)", "",
-          "| case | elements per half-width / radius | DOF | wall [s] | peak pressure error | half-width / radius error |",
-          "|---|---|---|---|---|---|"]
-    for r in h["line"]:
-        L.append(f"| line (R 20 mm, p0 1000 MPa) | {r['per_halfwidth']} | {r['dofs']} | {r['wall_s']:.2f} | {r['p_err']:+.2%} | {r['a_err']:+.2%} |")
-    for r in h["point"]:
-        L.append(f"| point (sphere R 20 mm, p0 1500 MPa) | {r['per_radius']} | {r['dofs']} | {r['wall_s']:.2f} | {r['p_err']:+.2%} | {r['a_err']:+.2%} |")
+          "Constraints `gauss`: the default (issue 14); `nodes`: the averaged nodal gaps of issue 6. Half-width (moments): "
+          "of the Hertz pressure with the nodal forces' load and second moment (`fem.contact.contact_patch`); (area): "
+          "from the tributary areas of the nodes with pressure.", "",
+          "| case | constraints | elements per half-width / radius | DOF | time [s] | peak pressure error | "
+          "half-width error (moments) | half-width error (area) |",
+          "|---|---|---|---|---|---|---|---|"]
+    for key, label in (("line", "line (R 20 mm, p0 1000 MPa)"), ("point", "point (sphere R 20 mm, p0 1500 MPa)")):
+        for r in h[key]:
+            L.append(f"| {label} | {r['points']} | {r['per_halfwidth']} | {r['dofs']} | {r['total_s']:.2f} | {r['p_err']:+.2%} | "
+                     f"{r['moment_a_err']:+.2%} | {r['a_err']:+.2%} |")
     L += ["", "On the gear model the profile size b/3 at refine 1 gives 3 elements per Hertz half-width b (6 at refine 2)."]
     text = "\n".join(L) + "\n"
     (out / "stress.md").write_text(text)
@@ -393,6 +480,7 @@ def main(argv=None) -> int:
     refines = [x["refine"] for x in rows]
     errs = {k: errors_of(refines, [x[k] for x in rows]) for k in QUANTITIES}
     data.update(levels=rows, errors=errs, choice=choose_refine(rows, errs))
+    data["pressure"] = pressure_study(case, rows, errs, args.quick)
     # refine for ~150k DOF from the measured DOF(refine) (log-log fit); quick: the middle level's refine
     lr, ld = np.log(refines), np.log([x["dofs"] for x in rows])
     slope, icpt = np.polyfit(lr, ld, 1)

@@ -69,6 +69,7 @@ class FESettings:
     penalty_check_tol: float = 0.01  # peak-pressure change allowed when the penalty doubles
     search_gap: float = 0.03  # [mm]
     max_search_gap: float = 0.5  # [mm]
+    points: str = "gauss"  # contact constraints: 'gauss' (per Gauss point) or 'nodes' (averaged per slave node)
 
     def __post_init__(self):
         Material(self.E, self.nu)  # validates
@@ -86,7 +87,8 @@ class FESettings:
 
     def contact_options(self) -> ContactOptions:
         return ContactOptions(penalty_factor=self.penalty_factor, max_penetration=self.max_penetration,
-                              quadrature=self.quadrature, penalty_check_tol=self.penalty_check_tol)
+                              quadrature=self.quadrature, penalty_check_tol=self.penalty_check_tol,
+                              points=self.points)
 
 
 # element-count model of the module docstring, fitted to real meshes

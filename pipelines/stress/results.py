@@ -41,7 +41,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
-from fem.contact import bilinear, project_to_faces
+from fem.contact import bilinear, project_to_faces, surface_mass
 from fem.result import STRESS_RECOVERY, FEResult
 from fem.model import FEModel
 from mesher.hexmesh import HexMesh
@@ -49,7 +49,7 @@ from tca.pair_tca import ContactKind
 
 from pipelines.stress.scene import Scene
 
-__all__ = ["EDGE_FRACTION", "boundary_nodes", "pressure_at", "pair_results", "member_teeth", "summarize"]
+__all__ = ["EDGE_FRACTION", "boundary_nodes", "pressure_at", "pair_results", "member_teeth", "summarize", "lumped_peak"]
 
 EDGE_FRACTION = 0.05
 
@@ -102,7 +102,8 @@ def pair_results(mesh: HexMesh, model: FEModel, r: FEResult) -> list[dict]:
         master_edge = float(pressure_at(mesh.points[bm], mesh, cp.slave, p, tol=max(0.02, 0.1 * h)).max(initial=0.0))
         out.append({"name": pr.name, "group": pr.group, "slave": cp.slave, "master": cp.master, "force_n": pr.force,
                     "area_mm2": pr.area, "max_pressure_mpa": pr.max_pressure, "active_nodes": pr.active_nodes,
-                    "candidates": pr.candidates, "edge_pressure_mpa": max(slave_edge, master_edge),
+                    "candidates": pr.candidates, "semi_axes_mm": [float(x) for x in pr.semi_axes],
+                    "edge_pressure_mpa": max(slave_edge, master_edge),
                     "slave_edge_pressure_mpa": slave_edge, "master_edge_pressure_mpa": master_edge})
     return out
 
@@ -177,6 +178,29 @@ def kinematic_ratio(scene: Scene, interfaces: dict) -> float:
                  / sum(w / _mesh_ratio(i, interfaces) for i, w in zip(ring, t)))
 
 
+def lumped_peak(mesh: HexMesh, model: FEModel, r: FEResult) -> float:
+    """Largest nodal force over tributary area F_a / int N_a dA on the slave flanks [MPa] (no Jacobi step).
+
+    The pressure without the consistent-projection step of ``fem.contact.ContactSet.pressure``: it
+    smooths the peak by O(h^2) and converges from below where the recovered peak converges from above.
+    """
+    if r.contact_force is None:
+        return float("nan")
+    peak = 0.0
+    for cp in model.contacts:
+        q = mesh.face_nodes(cp.slave)
+        D = np.asarray(surface_mass(mesh.points, q).sum(axis=1)).ravel()
+        nodes = np.unique(q)
+        peak = max(peak, float((r.contact_force[nodes] / D[nodes]).max(initial=0.0)))
+    return peak
+
+
+def _peak_semi_axes(rows: list[dict]) -> list[float]:
+    """Hertz-equivalent semi-axes a >= b [mm] of the pair carrying the peak pressure (fem.contact.contact_patch)."""
+    row = max(rows, key=lambda x: x["max_pressure_mpa"], default=None)
+    return [0.0, 0.0] if row is None else list(row["semi_axes_mm"])
+
+
 def _kind(k) -> str:
     return ContactKind.names.get(int(k), str(k))
 
@@ -216,6 +240,8 @@ def summarize(scene: Scene, mesh: HexMesh, model: FEModel, r: FEResult) -> dict:
         "max_contact_pressure_mpa": float(pk),
         "contact_force_n": interfaces[first]["force_n"],
         "contact_area_mm2": interfaces[first]["contact_area_mm2"],
+        "contact_semi_axes_mm": _peak_semi_axes(rows),
+        "max_contact_pressure_lumped_mpa": lumped_peak(mesh, model, r),
         "max_fillet_stress_mpa": fil_p,
         "max_fillet_von_mises_mpa": fil_vm,
         "max_fillet_set": fil_at,

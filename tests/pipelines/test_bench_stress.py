@@ -75,7 +75,13 @@ def test_quick_run_writes_report_and_plots(tmp_path):
     s = data["speed"]
     assert s["ratio"] == pytest.approx(s["best"]["contact_solve_s"] / s["linear"]["pardiso_s"])
     assert f"= {s['ratio']:.2f} |" in md
-    # issue 6 tolerances on the peak Hertz pressure: line 3 %, point 5 %
-    for key, tol in (("line", 0.03), ("point", 0.05)):
+    # issue 14 tolerance on the peak Hertz pressure at 3 elements per half-width with the default constraints: 3 %
+    for key in ("line", "point"):
         for r in data["hertz"][key]:
-            assert abs(r["p_err"]) < tol and f"{r['p_err']:+.2%}" in md
+            assert f"{r['p_err']:+.2%}" in md
+            if r["points"] == "gauss":
+                assert abs(r["p_err"]) < 0.03 and abs(r["moment_a_err"]) < 0.10
+    # issue 14: today's method beside the default at every level, same meshes
+    st = data["pressure"]
+    assert [r["dofs"] for r in st["nodes_levels"]] == [r["dofs"] for r in rows]
+    assert "Targets (issue 14)" in md
