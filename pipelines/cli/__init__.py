@@ -13,6 +13,8 @@ import tomllib
 
 from tca.errors import GearfeError
 
+from pipelines.render import offscreen
+
 __all__ = ["main", "SUBCOMMANDS"]
 
 # subcommand name -> module in pipelines implementing add_args(parser) and handle(args) -> int
@@ -43,6 +45,7 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
+    offscreen()  # images are rendered without a display (EGL), set up here and not at import
     try:
         return int(args._handler(args) or 0)
     except (GearfeError, tomllib.TOMLDecodeError, FileNotFoundError) as exc:

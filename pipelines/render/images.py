@@ -1,27 +1,25 @@
 """Off-screen images of FE results with pyvista: stress on the contacting teeth and the whole model.
 
-Works without a display: VTK renders through EGL (Mesa, software) when
-``VTK_DEFAULT_OPENGL_WINDOW=vtkEGLRenderWindow`` is set (done here before pyvista is imported).
-Every plotter is closed after its screenshot, so sweeps can render many images.
+Importing this module changes no global state. Without a display, call :func:`offscreen` once
+before rendering (the ``gearfe`` command and the test suite do): it selects VTK's EGL render
+window (Mesa, software; no attempt at an X server and no warning) and pyvista's off-screen mode.
+Every plotter here is created off screen and closed after its screenshot, so sweeps can render
+many images.
 """
 
 from __future__ import annotations
 
-import os
+from pathlib import Path
 
-os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+import numpy as np
+import pyvista as pv
 
-from pathlib import Path  # noqa: E402
+from mesher.hexmesh import HexMesh
+from tca.errors import InputError
 
-import numpy as np  # noqa: E402
-import pyvista as pv  # noqa: E402
+from pipelines.render import offscreen
 
-from mesher.hexmesh import HexMesh  # noqa: E402
-from tca.errors import InputError  # noqa: E402
-
-pv.OFF_SCREEN = True
-
-__all__ = ["to_pyvista", "render_contact_zone", "render_overview", "image_is_blank"]
+__all__ = ["offscreen", "to_pyvista", "render_contact_zone", "render_overview", "image_is_blank"]
 
 SCALAR_BAR = dict(title_font_size=18, label_font_size=14, n_labels=6, fmt="%.0f", vertical=True,
                   position_x=0.86, position_y=0.12, height=0.76, width=0.06)
