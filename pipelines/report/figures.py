@@ -39,7 +39,7 @@ from tca.pair_tca import PairTCAResult
 
 __all__ = ["parts_of", "elastic_displacement", "InterfaceView", "interface_views", "ellipse_outline", "ellipse_axes", "to_gear",
            "flank_zr", "flank_set", "tca_semi_axes", "patch_extent", "flank_map", "section", "root_curves",
-           "loaded_pair_force", "fe_hertz", "colour_top", "Pictures", "design_pictures"]
+           "loaded_pair_force", "fe_hertz", "colour_top", "picture_range", "Pictures", "design_pictures"]
 
 
 def parts_of(mesh) -> np.ndarray:
@@ -291,6 +291,12 @@ def colour_top(summary: dict, mesh, result, views) -> "object":
     cells = np.unique(np.concatenate([v.cells for v in views])) if views else np.arange(mesh.n_cells)
     fil = summary.get("max_fillet_von_mises_mpa") or 0.0
     return clip_range(result.von_mises[np.unique(mesh.cells[cells])], floor=1.1 * fil)
+
+
+def picture_range(summary: dict, artefacts: dict):
+    """:func:`colour_top` of a computed run (before its pictures are drawn; ``gearfe compare`` shares the top)."""
+    mesh = artefacts["mesh"]
+    return colour_top(summary, mesh, artefacts["result"], interface_views(artefacts["scene"], mesh, artefacts["tca"]))
 
 
 @dataclass(frozen=True)
