@@ -52,6 +52,7 @@ def add_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("conventional", help="stress case of the conventional design")
     p.add_argument("--out", required=True, help="output folder")
     add_overrides(p)
+    p.add_argument("--edges", action="store_true", help="draw the element edges on the teeth views")
 
 
 def compare_table(summaries: dict) -> list[dict]:
@@ -143,7 +144,8 @@ def handle(args) -> int:
         vm = max(x["von_mises"] for x in lims)
         top = max(picture_range(summaries[k], arts[k]).hi for k in LABELS)  # one clipped range for both designs
         for label in LABELS:
-            s = add_images(summaries[label], arts[label], tmp / label, {"von_mises": vm}, progress, top=top)
+            s = add_images(summaries[label], arts[label], tmp / label, {"von_mises": vm}, progress, top=top,
+                           show_edges=getattr(args, "edges", False))
             s = {"kind": "run", "case": str(paths[label]), **s}
             s["files"] = [*s["files"], "report.html"]
             write_summary(s, tmp / label / "summary.json")

@@ -45,6 +45,7 @@ def add_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("case", help="stress case file (TOML), e.g. pipelines/cases/stress_part1_new.toml")
     p.add_argument("--out", required=True, help="output folder")
     add_overrides(p)
+    p.add_argument("--edges", action="store_true", help="draw the element edges on the teeth views")
 
 
 def read_with_overrides(path, args) -> StressCase:
@@ -75,7 +76,7 @@ def handle(args) -> int:
     t0 = time.perf_counter()
     case = read_with_overrides(args.case, args)  # bad input fails here, before any output
     with staged_output(args.out) as tmp:
-        s = run_pipeline(case, Path(tmp), progress=progress)
+        s = run_pipeline(case, Path(tmp), progress=progress, show_edges=args.edges)
         s = {"kind": "run", "case": str(args.case), **s, "elapsed_s": time.perf_counter() - t0}
         s["files"] = [*s["files"], "report.html"]
         write_summary(s, Path(tmp) / "summary.json")

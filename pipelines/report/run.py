@@ -267,10 +267,10 @@ def _report(s: dict, out: Path, say) -> dict:
 
 
 def run_pipeline(case: StressCase, out: Path, progress=None, clim: dict | None = None, images: bool = True,
-                 artefacts: dict | None = None) -> dict:
+                 artefacts: dict | None = None, show_edges: bool = False) -> dict:
     """Run a load case into ``out`` (module docstring); returns the summary (JSON-ready).
 
-    ``images=False`` skips the rendering (``add_images`` does it later, e.g. with a colour range
+    ``show_edges`` draws the element edges on the teeth views. ``images=False`` skips the rendering (``add_images`` does it later, e.g. with a colour range
     common to several runs); ``artefacts`` receives the TCA result, scene, mesh and FE result.
     """
     out = Path(out)
@@ -288,5 +288,5 @@ def run_pipeline(case: StressCase, out: Path, progress=None, clim: dict | None =
     stages["images"] = time.perf_counter() - t1
     s = {**s, "images": [], "plots": plots, "files": ["result.vtu", "report.md", "summary.json", *plots], "stages": stages}
     if images:
-        return add_images(s, art, out, clim, progress)
+        return add_images(s, art, out, clim, progress, show_edges=show_edges)
     return _report(s, out, say)
