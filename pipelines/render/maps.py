@@ -105,8 +105,7 @@ def plot_section(xy: np.ndarray, triangles: np.ndarray, values: np.ndarray, path
     tri = mtri.Triangulation(xy[:, 0], xy[:, 1], np.asarray(triangles))
     panels = 2 if zoom and point is not None else 1
     fig, axs = plt.subplots(1, panels, figsize=(6.6 * panels, 5.6), squeeze=False, layout="constrained")
-    cmap = plt.get_cmap("jet").copy()
-    cmap.set_over("magenta")
+    cmap = plt.get_cmap("jet").with_extremes(over="magenta")
     vmax = float(vmax) or 1.0
     for k, ax in enumerate(axs[0]):
         if k == 1:
