@@ -74,7 +74,7 @@ def plot_flank_pressure(zr: np.ndarray, triangles: np.ndarray, pressure: np.ndar
         ax.set_ylabel("radius [mm]")
         if k == 1:
             ax.set_xlim(point[0] - zoom, point[0] + zoom)
-            ax.set_ylim(point[1] - 0.75 * zoom, point[1] + 0.75 * zoom)
+            ax.set_ylim(max(point[1] - 0.75 * zoom, zr[:, 1].min() - 0.3), min(point[1] + 0.75 * zoom, zr[:, 1].max() + 0.3))
             ax.set_title(f"around the TCA contact point (±{zoom:.2g} mm)", fontsize=9)
         else:
             ax.set_xlim(zr[:, 0].min() - 1, zr[:, 0].max() + 1)

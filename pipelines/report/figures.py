@@ -35,11 +35,12 @@ from pathlib import Path
 
 import numpy as np
 
-from tca.pair_tca import PairTCAResult
+from tca.pair_tca import ContactKind, PairTCAResult
 
-__all__ = ["parts_of", "elastic_displacement", "InterfaceView", "interface_views", "ellipse_outline", "ellipse_axes", "to_gear",
-           "flank_zr", "flank_set", "tca_semi_axes", "patch_extent", "flank_map", "section", "root_curves",
-           "loaded_pair_force", "fe_hertz", "colour_top", "picture_range", "Pictures", "design_pictures"]
+__all__ = ["parts_of", "elastic_displacement", "InterfaceView", "interface_views", "ellipse_outline", "ellipse_axes",
+           "to_gear", "flank_zr", "surface_contact", "cut_point", "flank_set", "tca_semi_axes", "patch_extent", "flank_map",
+           "section", "root_curves", "loaded_pair_force", "fe_hertz", "colour_top", "picture_range", "Pictures",
+           "design_pictures"]
 
 
 def parts_of(mesh) -> np.ndarray:
@@ -158,6 +159,25 @@ def _side_name(part, itf) -> str:
     return "pos" if side > 0 else "neg"
 
 
+def surface_contact(v: InterfaceView) -> bool:
+    """The TCA contact is inside both surfaces (not at an edge or corner): its ellipse and Hertz apply."""
+    return int(v.interface.contact.kind) == int(ContactKind.SURFACE)
+
+
+def cut_point(v: InterfaceView, inset: float = 0.5) -> tuple[np.ndarray, float]:
+    """Point [mm] of the transverse cut through the contact, and its shift along the axis [mm].
+
+    An edge contact at an end face would be cut in the face itself: the plane is moved
+    max(`inset`, 2 % of the face width) inside the slave's face width there (shift 0 elsewhere).
+    """
+    g = to_gear(v.slave, v.point)
+    half = 0.5 * v.slave.gear.face_width
+    room = max(inset, 0.02 * 2 * half)
+    z = float(np.clip(g[2], -half + room, half - room))
+    shift = z - float(g[2])
+    return v.point + shift * v.axis, shift
+
+
 def flank_set(v: InterfaceView) -> str:
     """Face set of the loaded (slave) flank of the loaded tooth."""
     return v.slave.set(f"tooth{v.slave.centre}/flank_{_side_name(v.slave, v.interface)}")
@@ -215,17 +235,21 @@ def flank_map(v: InterfaceView, mesh, result, path: Path, delta: float, hertz: d
         ok = np.all(np.isfinite(pts), axis=1)
         if ok.any():
             curves.append(Curve(pts[ok, 2], np.hypot(pts[ok, 0], pts[ok, 1]), "TCA path of contact", ".", "k"))
-    a, b = tca_semi_axes(v, delta)
-    if math.isfinite(a) and math.isfinite(b):
-        e = flank_zr(v.slave, ellipse_outline(v, a, b))
-        curves.append(Curve(e[:, 0], e[:, 1], f"TCA ellipse (δ = {delta * 1e3:g} µm): {2 * a:.2f} x {2 * b:.2f} mm", "--", "k"))
     hz = hertz or v.interface.hertz
-    e = flank_zr(v.slave, ellipse_outline(v, hz["a_mm"], hz["b_mm"]))
-    curves.append(Curve(e[:, 0], e[:, 1], f"Hertz ellipse (P = {hz['load_n']:.0f} N): {2 * hz['a_mm']:.2f} x "
-                        f"{2 * hz['b_mm']:.2f} mm", "-", "m"))
+    if surface_contact(v):  # at an edge or corner the TCA has no ellipse and Hertz does not apply
+        a, b = tca_semi_axes(v, delta)
+        if math.isfinite(a) and math.isfinite(b):
+            e = flank_zr(v.slave, ellipse_outline(v, a, b))
+            curves.append(Curve(e[:, 0], e[:, 1], f"TCA ellipse (δ = {delta * 1e3:g} µm): {2 * a:.2f} x {2 * b:.2f} mm",
+                                "--", "k"))
+        e = flank_zr(v.slave, ellipse_outline(v, hz["a_mm"], hz["b_mm"]))
+        curves.append(Curve(e[:, 0], e[:, 1], f"Hertz ellipse (P = {hz['load_n']:.0f} N): {2 * hz['a_mm']:.2f} x "
+                            f"{2 * hz['b_mm']:.2f} mm", "-", "m"))
     ar = v.slave.gear.area(1 if _side_name(v.slave, v.interface) == "pos" else -1)
     pt = flank_zr(v.slave, v.point[None, :])[0]
-    zoom = max(3.0 * hz["b_mm"], 1.2 * min(hz["a_mm"], 0.5 * (ar.z_max - ar.z_min)), 1.0)
+    zoom = min(max(3.0 * hz["b_mm"], 1.2 * hz["a_mm"], 1.0), 0.3 * (ar.z_max - ar.z_min))
+    if not surface_contact(v):
+        title = (title + " (TCA: " if title else "(TCA: ") + f"{ContactKind.names.get(int(v.interface.contact.kind), '?')} contact, no ellipse)"
     return plot_flank_pressure(zr, tri, np.nan_to_num(result.contact_pressure[nodes]), path, curves=curves, point=pt,
                                area=(ar.z_min, ar.z_max, ar.r_form, ar.r_tip), title=title, zoom=zoom)
 
@@ -234,16 +258,22 @@ def section(v: InterfaceView, grid, path: Path, vmax: float, hertz: dict | None 
     """``section_<interface>_<member>.png``: von Mises on the transverse plane through the contact point."""
     from pipelines.render.maps import plot_section
 
-    sl = grid.extract_cells(v.cells).slice(normal=v.axis, origin=v.point).triangulate()
+    origin, shift = cut_point(v)
+    sl = grid.extract_cells(v.cells).slice(normal=v.axis, origin=origin).triangulate()
     faces = np.asarray(sl.faces).reshape(-1, 4)[:, 1:]
     ex = _unit(np.cross(v.up, v.axis))
-    x = np.asarray(sl.points) - v.point
+    x = np.asarray(sl.points) - origin
+    if shift:
+        title = f"{title} (plane {abs(shift):.2f} mm inside the face width from the edge contact)"
     xy = np.stack([x @ ex, x @ v.up], -1)
     down3 = -v.view - (-v.view @ v.axis) * v.axis
     down = np.array([_unit(down3) @ ex, _unit(down3) @ v.up])
     b = (hertz or v.interface.hertz)["b_mm"]
-    zoom = max(6.0 * b, 1.0)
-    return plot_section(xy, faces, sl.point_data["von_mises"], path, vmax=vmax, point=(0.0, 0.0), depth=0.78 * b,
+    zoom = max(6.0 * b, 1.0) if surface_contact(v) else 1.5
+    if not surface_contact(v):
+        b = None
+    return plot_section(xy, faces, sl.point_data["von_mises"], path, vmax=vmax, point=(0.0, 0.0),
+                        depth=None if b is None else 0.78 * b,
                         down=down, zoom=zoom, title=title)
 
 
@@ -339,9 +369,9 @@ def design_pictures(summary: dict, artefacts: dict, out: Path, *, top: float | N
                     f"{v.master.centre}")
         f["teeth"] = render_teeth(parts, grid.extract_cells(v.flank_cells), out / f"teeth_{v.stem}.png", axis=v.axis,
                                   up=v.up, normal=v.view, cr=cr, marks=[mark], caption=head, show_edges=show_edges,
-                                  cut=v.point, size=size).name
+                                  cut=cut_point(v)[0], size=size).name
         scale = deformation_scale(parts.point_data["displacement"], float(np.linalg.norm(np.ptp(parts.points, axis=0))))
-        f["deformed"] = render_deformed(parts, out / f"deformed_{v.stem}.png", axis=v.axis, up=v.up, cut=v.point,
+        f["deformed"] = render_deformed(parts, out / f"deformed_{v.stem}.png", axis=v.axis, up=v.up, cut=cut_point(v)[0],
                                         factor=scale, cr=cr, size=(int(0.66 * size[0]), int(size[1] * 1.0)),
                                         caption=f"{head}\nelastic displacements x {scale:.3g} (rigid-body motion removed)").name
         force = loaded_pair_force(v, summary)
@@ -355,12 +385,15 @@ def design_pictures(summary: dict, artefacts: dict, out: Path, *, top: float | N
         files[v.stem] = f
         a, b = tca_semi_axes(v, delta)
         patch = patch_extent(v, mesh, result.contact_pressure)
+        ok = surface_contact(v)  # else no ellipse: None in the records
         records[v.stem] = {
             "interface": v.name, "member": v.member, "load_share": share, "loaded_pair_force_n": force,
-            "fe_peak_pressure_mpa": patch["peak_mpa"], "hertz_p0_mpa": float(hz["p0_mpa"]),
-            "fe_patch_length_mm": patch["length_mm"], "hertz_length_mm": 2 * float(hz["a_mm"]),
-            "tca_ellipse_length_mm": 2 * a, "fe_patch_width_mm": patch["width_mm"], "hertz_width_mm": 2 * float(hz["b_mm"]),
-            "tca_ellipse_width_mm": 2 * b, "fe_patch_centre_offset_mm": patch["offset_mm"],
+            "tca_kind": ContactKind.names.get(int(v.interface.contact.kind), str(v.interface.contact.kind)),
+            "fe_peak_pressure_mpa": patch["peak_mpa"], "hertz_p0_mpa": float(hz["p0_mpa"]) if ok else None,
+            "fe_patch_length_mm": patch["length_mm"], "hertz_length_mm": 2 * float(hz["a_mm"]) if ok else None,
+            "tca_ellipse_length_mm": 2 * a if ok else None, "fe_patch_width_mm": patch["width_mm"],
+            "hertz_width_mm": 2 * float(hz["b_mm"]) if ok else None, "tca_ellipse_width_mm": 2 * b if ok else None,
+            "fe_patch_centre_offset_mm": patch["offset_mm"],
             "root_stress_mpa": {c.label: float(np.max(c.y)) for c in curves},
             "deformation_scale": scale,
         }
