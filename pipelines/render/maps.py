@@ -24,6 +24,7 @@ from pipelines.render.plots import plt, savefig
 __all__ = ["PATCH_FRACTION", "Curve", "plot_flank_pressure", "plot_section", "plot_root_stress", "quads_to_triangles"]
 
 PATCH_FRACTION = 0.01  # the FE contact patch: nodal pressure above this fraction of the flank's peak
+DPI = 100  # the maps are large figures: 100 dpi keeps them sharp at a third fewer pixels than the plots
 
 
 @dataclass(frozen=True)
@@ -85,7 +86,7 @@ def plot_flank_pressure(zr: np.ndarray, triangles: np.ndarray, pressure: np.ndar
     leg = fig.legend(loc="outside lower center", ncol=3, fontsize=8, frameon=True)
     leg.get_frame().set_facecolor("0.8")
     fig.suptitle(title or f"Contact pressure, peak {peak:.0f} MPa", fontsize=10)
-    return savefig(fig, path)
+    return savefig(fig, path, dpi=DPI, tight=False)
 
 
 def plot_section(xy: np.ndarray, triangles: np.ndarray, values: np.ndarray, path: Path, *, vmax: float,
@@ -135,7 +136,7 @@ def plot_section(xy: np.ndarray, triangles: np.ndarray, values: np.ndarray, path
     if point is not None:
         fig.legend(loc="outside lower center", ncol=2, fontsize=8, frameon=True).get_frame().set_facecolor("0.8")
     fig.suptitle(title, fontsize=10)
-    return savefig(fig, path)
+    return savefig(fig, path, dpi=DPI, tight=False)
 
 
 def plot_root_stress(panels: list, path: Path, title: str = "") -> Path:
@@ -152,4 +153,4 @@ def plot_root_stress(panels: list, path: Path, title: str = "") -> Path:
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.0, 0.5))
     fig.suptitle(title or "Root stress along the fillets of the loaded teeth", fontsize=10)
-    return savefig(fig, path)
+    return savefig(fig, path, dpi=DPI, tight=False)
