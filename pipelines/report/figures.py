@@ -365,8 +365,9 @@ def design_pictures(summary: dict, artefacts: dict, out: Path, *, top: float | N
         share = summary["load_share"][v.name]["members"][v.member]
         head = f"{v.name}, member {v.member}: load share {share:.3f}"
         parts = grid.extract_cells(v.cells)
-        mark = Mark(tuple(v.point), tuple(v.view), f"loaded pair: {v.slave.body} {v.slave.centre} / {v.master.body} "
-                    f"{v.master.centre}")
+        force = loaded_pair_force(v, summary)
+        mark = Mark(tuple(v.point), tuple(v.view), ("loaded pair" if force > 0 else "TCA pair, no load") +
+                    f": {v.slave.body} {v.slave.centre} / {v.master.body} {v.master.centre}")
         f["teeth"] = render_teeth(parts, grid.extract_cells(v.flank_cells), out / f"teeth_{v.stem}.png", axis=v.axis,
                                   up=v.up, normal=v.view, cr=cr, marks=[mark], caption=head, show_edges=show_edges,
                                   cut=cut_point(v)[0], size=size).name
@@ -374,7 +375,6 @@ def design_pictures(summary: dict, artefacts: dict, out: Path, *, top: float | N
         f["deformed"] = render_deformed(parts, out / f"deformed_{v.stem}.png", axis=v.axis, up=v.up, cut=cut_point(v)[0],
                                         factor=scale, cr=cr, size=(int(0.66 * size[0]), int(size[1] * 1.0)),
                                         caption=f"{head}\nelastic displacements x {scale:.3g} (rigid-body motion removed)").name
-        force = loaded_pair_force(v, summary)
         hz = fe_hertz(v, result, force)
         f["flank"] = flank_map(v, mesh, result, out / f"flank_{v.stem}.png", delta, hertz=hz,
                                title=f"{head}: FE contact pressure on the loaded {v.slave.body} flank against the TCA").name
