@@ -122,7 +122,7 @@ def compare_html(summaries: dict, folders: dict, rows: list[dict], finding: dict
     blocks = [table(rows), section("Finding", table([{"check": k, "value": v} for k, v in finding.items()]))]
     for p, cap in images or []:
         blocks.append(image(p, cap))
-    blocks.append(section("Key results", grid([f"<h3>{fmt(k)}</h3>" + _position(summaries[k]) + "".join(_results(summaries[k]))
+    blocks.append(section("Per design", grid([f"<h3>{fmt(k)}</h3>" + _position(summaries[k]) + "".join(_results(summaries[k]))
                                               for k in labels])))
     stems = [list(summaries[k].get("pictures", {}).get("files", {})) for k in labels]
     for stem in stems[0]:

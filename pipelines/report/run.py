@@ -12,10 +12,15 @@ the hexahedral models, the contact solve, ``result.vtu``), then writes into ``ou
   the side of the hidden body looking along the contact normal (cells in front of the tangent plane
   at the contact — the neighbouring teeth that would hide the flank — are left out); ``zone_..._pressure.png`` the same
   with the contact pressure [MPa] (edge contact shows as a ridge on the flank's border);
-* ``overview.png`` — the whole model coloured by von Mises stress (each member's largest von Mises
+* per mesh the design-review pictures of :func:`pipelines.report.figures.design_pictures`
+  (``teeth_``, ``deformed_``, ``flank_``, ``section_``, ``root_<interface>_<member>.png``; their
+  numbers under ``pictures`` in the summary; docs/pictures.md);
+* ``overview.png`` — the whole model cut through the first mesh's contact point, lit, on the
+  pictures' clipped von Mises range (each member's largest von Mises
   stress on its loaded part, as shown, is added to the summary: ``interfaces.<i>.members.<m>.max_von_mises_mpa``);
-* ``report.md`` — the key numbers, stage times and the images; ``summary.json`` is written by the
-  command (all keys of ``gearfe stress`` plus ``stages`` with the time of every stage [s]).
+* ``report.md`` — the key numbers, stage times and the images; ``summary.json`` and the
+  self-contained ``report.html`` (:mod:`pipelines.report.html`) are written by the command (all keys
+  of ``gearfe stress`` plus ``stages`` with the time of every stage [s]).
 
 Colour ranges: every zone image of a run shares one range (0 to the run's largest value on the
 shown flanks) unless ``clim`` fixes it (``gearfe compare`` uses one range for both designs).

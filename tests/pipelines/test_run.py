@@ -85,7 +85,7 @@ def test_run_images_show_the_contact_zone(pair_run):
 
 def test_run_at_explicit_phi1_and_progress(tmp_path, capsys):
     out = tmp_path / "phi"
-    assert main(["run", str(PAIR), "--out", str(out), "--phi1-deg", "-2.0", "--refine", "0.3"]) == 0
+    assert main(["run", str(PAIR), "--out", str(out), "--phi1-deg", "-2.0", "--refine", "0.3", "--edges"]) == 0
     err = capsys.readouterr().err
     for i in range(1, 7):
         assert f"[{i}/6]" in err
