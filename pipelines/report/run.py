@@ -16,8 +16,8 @@ the hexahedral models, the contact solve, ``result.vtu``), then writes into ``ou
   (``teeth_``, ``deformed_``, ``flank_``, ``section_``, ``root_<interface>_<member>.png``; their
   numbers under ``pictures`` in the summary; docs/pictures.md);
 * ``overview.png`` — the whole model cut through the first mesh's contact point, lit, on the
-  pictures' clipped von Mises range (each member's largest von Mises
-  stress on its loaded part, as shown, is added to the summary: ``interfaces.<i>.members.<m>.max_von_mises_mpa``);
+  pictures' clipped von Mises range (each member's largest von Mises stress on its loaded part, as
+  shown in its zone image, is added to the summary: ``interfaces.<i>.members.<m>.max_von_mises_mpa``);
 * ``report.md`` — the key numbers, stage times and the images; ``summary.json`` and the
   self-contained ``report.html`` (:mod:`pipelines.report.html`) are written by the command (all keys
   of ``gearfe stress`` plus ``stages`` with the time of every stage [s]).
