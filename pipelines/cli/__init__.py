@@ -23,6 +23,8 @@ import sys
 
 from tca.errors import GearfeError
 
+from pipelines.render import offscreen
+
 __all__ = ["main", "SUBCOMMANDS", "Terminated", "EXIT_INPUT", "EXIT_BUG", "EXIT_SIGINT", "EXIT_SIGTERM"]
 
 EXIT_INPUT = 2  # bad input, impossible geometry, a failed solve, a model too large
@@ -71,6 +73,7 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
+    offscreen()  # images are rendered without a display (EGL), set up here and not at import
     where = f"gearfe {args.command}"
     old = None
     try:

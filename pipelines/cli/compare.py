@@ -10,6 +10,8 @@
   ``compare_pressure.png`` — the same with the contact pressure (each design on its own range:
   an edge contact's peak is singular and would wash out the other design);
   ``compare_overview.png`` — the two whole models;
+* ``report.html`` — self-contained page: the table, the finding and every picture of both designs side
+  by side (one clipped von Mises range for both), with the case files; each design's folder has its own;
 * ``compare.md`` / ``compare.csv`` / ``compare.json`` — per design and interface: load share of
   members a and b, maximum contact pressure, maximum von Mises stress, edge contact (TCA and FE),
   plus the design-level maxima and the torque balance.
@@ -35,6 +37,8 @@ from tca.errors import InputError
 from pipelines.cli.run import add_overrides, progress, read_with_overrides, write_summary
 from pipelines.cli.outdir import staged_output
 from pipelines.render.plots import side_by_side
+from pipelines.report.figures import picture_range
+from pipelines.report.html import compare_html, run_html
 from pipelines.report.run import add_images, run_pipeline, zone_limits, zone_name
 
 __all__ = ["add_args", "handle", "compare_table", "finding", "SHARED", "LABELS"]
@@ -48,6 +52,7 @@ def add_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("conventional", help="stress case of the conventional design")
     p.add_argument("--out", required=True, help="output folder")
     add_overrides(p)
+    p.add_argument("--edges", action="store_true", help="draw the element edges on the teeth views")
 
 
 def compare_table(summaries: dict) -> list[dict]:
@@ -137,10 +142,14 @@ def handle(args) -> int:
             summaries[label] = run_pipeline(case, tmp / label, progress, images=False, artefacts=arts[label])
         lims = [zone_limits(summaries[k], arts[k]["mesh"], arts[k]["result"]) for k in LABELS]
         vm = max(x["von_mises"] for x in lims)
+        top = max(picture_range(summaries[k], arts[k]).hi for k in LABELS)  # one clipped range for both designs
         for label in LABELS:
-            s = add_images(summaries[label], arts[label], tmp / label, {"von_mises": vm}, progress)
+            s = add_images(summaries[label], arts[label], tmp / label, {"von_mises": vm}, progress, top=top,
+                           show_edges=getattr(args, "edges", False))
             s = {"kind": "run", "case": str(paths[label]), **s}
+            s["files"] = [*s["files"], "report.html"]
             write_summary(s, tmp / label / "summary.json")
+            run_html(s, tmp / label, Path(paths[label]).read_text())
             summaries[label] = s
             arts[label].clear()  # free the meshes and fields
         zones = [(itf, mem) for itf, d in summaries[LABELS[0]]["interfaces"].items() for mem in d["members"]]
@@ -166,6 +175,10 @@ def handle(args) -> int:
         w.writerows(rows)
         (tmp / "compare.csv").write_text(buf.getvalue())
         (tmp / "compare.md").write_text(_markdown(rows, f, summaries))
+        compare_html(summaries, {k: tmp / k for k in LABELS}, rows, f, tmp / "report.html",
+                     {k: Path(v).read_text() for k, v in paths.items()},
+                     [(tmp / "compare_zones.png", "von Mises on the loaded flanks, one range for both designs (Fig. 1.9)"),
+                      (tmp / "compare_pressure.png", "contact pressure, one range per design")])
         (tmp / "compare.json").write_text(json.dumps({"rows": rows, "finding": f, "cases": {k: str(v) for k, v in paths.items()},
                                                       "elapsed_s": time.perf_counter() - t0}, indent=2) + "\n")
     print((Path(args.out) / "compare.md").read_text())

@@ -3,9 +3,10 @@
 ``gearfe run CASE.toml --out DIR`` runs a stress case (``kind = "stress"``, see
 ``pipelines/stress.py`` for its keys) through every stage and writes into DIR: ``summary.json``
 (every key number of ``gearfe stress`` and ``stages``: the wall time of each stage [s]),
+``report.html`` (self-contained: tables, the case file and every image embedded),
 ``report.md``, ``result.vtu``, TCA plots (``tca_te.png``, for a pair ``tca_paths.png``) and
-off-screen PNG images (``zone_<interface>_<member>.png`` von Mises on the loaded flank,
-``..._pressure.png`` contact pressure, ``overview.png``). The position is the case's (by default
+off-screen PNG images (per mesh ``teeth_``, ``flank_``, ``section_``, ``root_``, ``deformed_`` and
+``zone_<interface>_<member>.png``, and ``overview.png``; see docs/pictures.md). The position is the case's (by default
 the maximum of the transmission error); ``--phi1-deg`` or ``--position`` override it, ``--refine``
 overrides ``[mesh] refine``. Progress lines ([stage/6]) go to stderr. On bad input or a failed
 solve: one error line, exit status 2, no files.
@@ -24,6 +25,7 @@ from tca.errors import InputError
 
 from pipelines.cases.reader import load_case
 from pipelines.cli.outdir import staged_output
+from pipelines.report.html import run_html
 from pipelines.report.run import run_pipeline
 from pipelines.cases.schema import Table
 from pipelines.stress.case import StressCase, read_stress_case
@@ -46,6 +48,7 @@ def add_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("case", help="stress case file (TOML), e.g. pipelines/cases/stress_part1_new.toml")
     p.add_argument("--out", required=True, help="output folder")
     add_overrides(p)
+    p.add_argument("--edges", action="store_true", help="draw the element edges on the teeth views")
 
 
 def read_with_overrides(path, args) -> StressCase:
@@ -83,9 +86,11 @@ def handle(args) -> int:
     t0 = time.perf_counter()
     case = read_with_overrides(args.case, args)  # bad input fails here, before any output
     with staged_output(args.out) as tmp:
-        s = run_pipeline(case, Path(tmp), progress=progress)
+        s = run_pipeline(case, Path(tmp), progress=progress, show_edges=args.edges)
         s = {"kind": "run", "case": str(args.case), **s, "elapsed_s": time.perf_counter() - t0}
+        s["files"] = [*s["files"], "report.html"]
         write_summary(s, Path(tmp) / "summary.json")
+        run_html(s, Path(tmp), Path(args.case).read_text())
     width = max(len(k) for k in SHOWN)
     for k in SHOWN:
         v = s.get(k)
@@ -93,5 +98,5 @@ def handle(args) -> int:
     for name, share in s["load_share"].items():
         print(f"  load share {name}: " + ", ".join(f"{m} {v:.3f}" for m, v in share["members"].items()))
     print("  stage times [s]: " + ", ".join(f"{k} {v:.1f}" for k, v in s["stages"].items()))
-    print(f"results in {args.out}/ (report.md, summary.json, result.vtu, images: {', '.join(s['images'][:2])}, ...)")
+    print(f"results in {args.out}/ (report.html, report.md, summary.json, result.vtu, images: {', '.join(s['images'][:2])}, ...)")
     return 0

@@ -1,27 +1,25 @@
 """Off-screen images of FE results with pyvista: stress on the contacting teeth and the whole model.
 
-Works without a display: VTK renders through EGL (Mesa, software) when
-``VTK_DEFAULT_OPENGL_WINDOW=vtkEGLRenderWindow`` is set (done here before pyvista is imported).
-Every plotter is closed after its screenshot, so sweeps can render many images.
+Importing this module changes no global state. Without a display, call :func:`offscreen` once
+before rendering (the ``gearfe`` command and the test suite do): it selects VTK's EGL render
+window (Mesa, software; no attempt at an X server and no warning) and pyvista's off-screen mode.
+Every plotter here is created off screen and closed after its screenshot, so sweeps can render
+many images.
 """
 
 from __future__ import annotations
 
-import os
+from pathlib import Path
 
-os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+import numpy as np
+import pyvista as pv
 
-from pathlib import Path  # noqa: E402
+from mesher.hexmesh import HexMesh
+from tca.errors import InputError
 
-import numpy as np  # noqa: E402
-import pyvista as pv  # noqa: E402
+from pipelines.render import offscreen
 
-from mesher.hexmesh import HexMesh  # noqa: E402
-from tca.errors import InputError  # noqa: E402
-
-pv.OFF_SCREEN = True
-
-__all__ = ["to_pyvista", "render_contact_zone", "render_overview", "image_is_blank"]
+__all__ = ["offscreen", "to_pyvista", "render_contact_zone", "render_overview", "image_is_blank"]
 
 SCALAR_BAR = dict(title_font_size=18, label_font_size=14, n_labels=6, fmt="%.0f", vertical=True,
                   position_x=0.86, position_y=0.12, height=0.76, width=0.06)
@@ -85,17 +83,29 @@ def render_contact_zone(grid: pv.UnstructuredGrid, field: str, focus, normal, pa
 
 
 def render_overview(grid: pv.UnstructuredGrid, field: str, path: Path, *, title: str = "von Mises stress [MPa]",
-                    clim=None, size=(1600, 1100), caption: str = "") -> Path:
-    """The whole model coloured by `field`, isometric view."""
+                    clim=None, size=(1600, 1100), caption: str = "", cut=None) -> Path:
+    """The whole model coloured by `field`, isometric view, lit; values above ``clim`` in magenta.
+
+    ``cut = (point, normal)`` [mm]: the half of the model on the normal's side of that plane is left
+    out (the loads are inside: a cut through a contact point shows it and the fillets).
+    """
     if field not in grid.point_data:
         raise InputError("field", field, "a point field of the result: " + ", ".join(grid.point_data))
+    if cut is not None:
+        point, normal = (np.asarray(x, float) for x in cut)
+        grid = grid.clip(normal=normal, origin=point, invert=True)
     p = _plotter(size)
     try:
-        p.add_mesh(grid, scalars=field, cmap="jet", clim=clim, show_edges=False,
-                   scalar_bar_args={**SCALAR_BAR, "title": title})
+        above = clim is not None and float(np.nanmax(grid.point_data[field], initial=0.0)) > clim[1]
+        p.add_mesh(grid.extract_surface(algorithm="dataset_surface"), scalars=field, cmap="jet", clim=clim, show_edges=False,
+                   smooth_shading=True, split_sharp_edges=True, specular=0.25, above_color="magenta" if above else None,
+                   scalar_bar_args={**SCALAR_BAR, "title": title, **({"above_label": "above"} if above else {})})
         if caption:
             p.add_text(caption, position="upper_left", font_size=11, color="black")
-        p.view_isometric()
+        if cut is not None:  # from the cut's side
+            p.view_vector(tuple(normal + 0.6 * np.cross(normal, [1.0, 0.0, 0.0]) + 0.3 * np.cross(normal, [0.0, 1.0, 0.0])))
+        else:
+            p.view_isometric()
         p.reset_camera()
         p.screenshot(str(path))
     finally:

@@ -16,9 +16,12 @@ from tca.pair_tca import ARCSEC, ContactKind, PairTCAResult, ellipse_outlines  #
 __all__ = ["plot_pair_te", "plot_contact_paths", "savefig", "side_by_side"]
 
 
-def savefig(fig, path: Path) -> Path:
-    """Save and close a figure (plots are made in loops: never leak figures)."""
-    fig.savefig(path, dpi=130, bbox_inches="tight")
+def savefig(fig, path: Path, dpi: int = 130, tight: bool = True) -> Path:
+    """Save and close a figure (plots are made in loops: never leak figures).
+
+    ``tight=False`` for figures with a constrained layout: a tight bounding box draws them twice.
+    """
+    fig.savefig(path, dpi=dpi, bbox_inches="tight" if tight else None)
     plt.close(fig)
     return path
 

@@ -12,10 +12,15 @@ the hexahedral models, the contact solve, ``result.vtu``), then writes into ``ou
   the side of the hidden body looking along the contact normal (cells in front of the tangent plane
   at the contact — the neighbouring teeth that would hide the flank — are left out); ``zone_..._pressure.png`` the same
   with the contact pressure [MPa] (edge contact shows as a ridge on the flank's border);
-* ``overview.png`` — the whole model coloured by von Mises stress (each member's largest von Mises
-  stress on its loaded part, as shown, is added to the summary: ``interfaces.<i>.members.<m>.max_von_mises_mpa``);
-* ``report.md`` — the key numbers, stage times and the images; ``summary.json`` is written by the
-  command (all keys of ``gearfe stress`` plus ``stages`` with the time of every stage [s]).
+* per mesh the design-review pictures of :func:`pipelines.report.figures.design_pictures`
+  (``teeth_``, ``deformed_``, ``flank_``, ``section_``, ``root_<interface>_<member>.png``; their
+  numbers under ``pictures`` in the summary; docs/pictures.md);
+* ``overview.png`` — the whole model cut through the first mesh's contact point, lit, on the
+  pictures' clipped von Mises range (each member's largest von Mises stress on its loaded part, as
+  shown in its zone image, is added to the summary: ``interfaces.<i>.members.<m>.max_von_mises_mpa``);
+* ``report.md`` — the key numbers, stage times and the images; ``summary.json`` and the
+  self-contained ``report.html`` (:mod:`pipelines.report.html`) are written by the command (all keys
+  of ``gearfe stress`` plus ``stages`` with the time of every stage [s]).
 
 Colour ranges: every zone image of a run shares one range (0 to the run's largest value on the
 shown flanks) unless ``clim`` fixes it (``gearfe compare`` uses one range for both designs).
@@ -34,6 +39,8 @@ from tca.pair_tca import ARCSEC, PairTCAResult
 from pipelines.stress.case import StressCase
 
 from pipelines.stress.run import run_stress
+
+from pipelines.report.figures import design_pictures, parts_of
 
 __all__ = ["STAGES", "run_pipeline", "add_images", "zone_images", "zone_limits", "plot_position_te", "write_report", "zone_name"]
 
@@ -82,17 +89,6 @@ def _zone_radius(m: dict) -> float:
     return max(0.6 * m["face_width_mm"], 1.5 * hz.get("a_mm", 0.0))
 
 
-def _parts(mesh) -> np.ndarray:
-    """Connected part of every cell (parts of one body share no nodes: Fig. 1.7's members)."""
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-
-    nc, k = mesh.cells.shape
-    a = coo_matrix((np.ones(nc * k), (np.repeat(np.arange(nc), k), mesh.cells.ravel())), shape=(nc, mesh.n_points)).tocsr()
-    _, lab = connected_components(a @ a.T, directed=False)
-    return lab
-
-
 def _view(m: dict) -> np.ndarray:
     """Unit vector from the contact point toward the camera: the hidden (other) body's side of the contact."""
     n = np.asarray(m["tca_normal"], float)
@@ -103,7 +99,7 @@ def _zones(summary: dict, mesh, grid) -> list:
     """(interface, member, summary of the member, sub-grid of its loaded part near the contact, view radius)."""
     out = []
     centres = mesh.points[mesh.cells].mean(axis=1)
-    part = _parts(mesh)
+    part = parts_of(mesh)
     for itf, d in summary["interfaces"].items():
         for member, m in d["members"].items():
             p = np.asarray(m["tca_contact_point_mm"])
@@ -136,16 +132,19 @@ def zone_limits(summary: dict, mesh, result) -> dict:
     return _maxima(_zones(summary, mesh, _grid(mesh, result)))
 
 
-def zone_images(summary: dict, mesh, result, out: Path, clim: dict | None = None, size=(1200, 900)) -> tuple[list, dict]:
+def zone_images(summary: dict, mesh, result, out: Path, clim: dict | None = None, size=(1200, 900),
+                overview_range=None) -> tuple[list, dict]:
     """Contact-zone images of every interface and member, and the overview (module docstring).
 
     Returns the file names and the largest von Mises stress [MPa] on each zone's loaded part
     ({(interface, member): value}).
 
     ``clim``: fixed colour ranges {field: max [MPa]} ('von_mises', 'contact_pressure'); a field
-    not given gets the largest value over this run's zone images.
+    not given gets the largest value over this run's zone images. ``overview_range``: the
+    :class:`pipelines.render.views.ColourRange` of ``overview.png`` (default: clipped as the pictures).
     """
     from pipelines.render.images import render_contact_zone, render_overview
+    from pipelines.render.views import clip_range
 
     grid = _grid(mesh, result)
     zones = _zones(summary, mesh, grid)
@@ -166,7 +165,10 @@ def zone_images(summary: dict, mesh, result, out: Path, clim: dict | None = None
                             radius=r, clim=(0.0, lim["contact_pressure"] or 1.0), size=size, title="contact pressure [MPa]", show_edges=edges,
                             caption=cap + f"\nmax contact pressure {m['max_contact_pressure_mpa']:.0f} MPa")
         names += [f"{stem}.png", f"{stem}_pressure.png"]
-    render_overview(grid, "von_mises", out / "overview.png", size=size,
+    cr = overview_range if overview_range is not None else clip_range(result.von_mises, floor=1.1 * (summary.get("max_fillet_von_mises_mpa") or 0.0))
+    # cut by the transverse plane (normal z_f, the sun's or driver's axis) through the first mesh's contact point
+    cut = (zones[0][2]["tca_contact_point_mm"], (0.0, 0.0, 1.0)) if zones else None
+    render_overview(grid, "von_mises", out / "overview.png", size=size, clim=(cr.lo, cr.hi), title=cr.label("von Mises [MPa]"), cut=cut,
                     caption=f"{summary.get('title') or summary.get('model')}: max von Mises {summary['max_von_mises_mpa']:.0f} MPa")
     names.append("overview.png")
     return names, peaks
@@ -244,17 +246,29 @@ def _say(progress):
     return say
 
 
-def add_images(summary: dict, artefacts: dict, out: Path, clim: dict | None = None, progress=None) -> dict:
-    """Render the images of a computed run into ``out`` and rewrite its report; the updated summary."""
+def add_images(summary: dict, artefacts: dict, out: Path, clim: dict | None = None, progress=None,
+               top: float | None = None, show_edges: bool = False) -> dict:
+    """Render the images of a computed run into ``out`` and rewrite its reports; the updated summary.
+
+    ``clim``: colour ranges of the zone images (:func:`zone_images`); ``top`` [MPa]: the top of the
+    von Mises range of the design-review pictures (:func:`pipelines.report.figures.design_pictures`;
+    default: clipped per run); ``show_edges``: element edges on the teeth views.
+    """
     say = _say(progress)
     t1 = time.perf_counter()
     say("images: rendering off screen (pyvista)")
-    names, peaks = zone_images(summary, artefacts["mesh"], artefacts["result"], Path(out), clim)
+    pics = design_pictures(summary, artefacts, Path(out), top=top, show_edges=show_edges)
+    names, peaks = zone_images(summary, artefacts["mesh"], artefacts["result"], Path(out), clim, overview_range=pics.colour)
+    for f in pics.files.values():
+        names += list(f.values())
     dt = time.perf_counter() - t1
     say(f"images: {len(names)} images in {dt:.1f} s")
     interfaces = {itf: {**d, "members": {k: {**m, "max_von_mises_mpa": peaks[(itf, k)]} for k, m in d["members"].items()}}
                   for itf, d in summary["interfaces"].items()}
-    s = {**summary, "interfaces": interfaces, "images": names, "files": [*summary["files"], *names]}
+    c = pics.colour
+    pictures = {"files": pics.files, "records": pics.records, "von_mises_range_mpa": [c.lo, c.hi], "von_mises_shown_max_mpa": c.max,
+                "clipped": c.clipped, "clip_percentile": c.percentile}
+    s = {**summary, "interfaces": interfaces, "images": names, "pictures": pictures, "files": [*summary["files"], *names]}
     s["stages"] = {**summary["stages"], "images": summary["stages"].get("images", 0.0) + dt}
     return _report(s, Path(out), say)
 
@@ -269,10 +283,10 @@ def _report(s: dict, out: Path, say) -> dict:
 
 
 def run_pipeline(case: StressCase, out: Path, progress=None, clim: dict | None = None, images: bool = True,
-                 artefacts: dict | None = None) -> dict:
+                 artefacts: dict | None = None, show_edges: bool = False) -> dict:
     """Run a load case into ``out`` (module docstring); returns the summary (JSON-ready).
 
-    ``images=False`` skips the rendering (``add_images`` does it later, e.g. with a colour range
+    ``show_edges`` draws the element edges on the teeth views. ``images=False`` skips the rendering (``add_images`` does it later, e.g. with a colour range
     common to several runs); ``artefacts`` receives the TCA result, scene, mesh and FE result.
     """
     out = Path(out)
@@ -290,5 +304,5 @@ def run_pipeline(case: StressCase, out: Path, progress=None, clim: dict | None =
     stages["images"] = time.perf_counter() - t1
     s = {**s, "images": [], "plots": plots, "files": ["result.vtu", "report.md", "summary.json", *plots], "stages": stages}
     if images:
-        return add_images(s, art, out, clim, progress)
+        return add_images(s, art, out, clim, progress, show_edges=show_edges)
     return _report(s, out, say)

@@ -50,7 +50,7 @@ from tca.pair_tca import ARCSEC
 from pipelines.cases.schema import Table
 
 __all__ = ["POSITION_KEYS", "STEP_KEY", "validate_stress", "run_point_stress", "loaded_te", "second_pair_gap",
-           "stress_scalars", "expand_positions", "plot_cycle"]
+           "stress_scalars", "expand_positions", "plot_cycle", "write_cycle_report"]
 
 POSITION_KEYS = ("position", "phi1_deg", "roll_deg")  # keys of a stress case that choose the position
 STEP_KEY = "positions.step"  # the CSV/axis column of a [positions] steps expansion
@@ -185,7 +185,9 @@ def _save(fig, path: Path) -> Path:
 
 
 def plot_cycle(rows: list[dict], keys: list[str], position_key: str, out: Path) -> list[Path]:
-    """te_loaded.png and load_share.png in ``out`` from the rows of a sweep over positions (one curve per group)."""
+    """From the rows of a sweep over positions (one curve per group of the other axes), in ``out``:
+    te_loaded.png, load_share.png, stress_cycle.png (peak contact pressure and root stress) and
+    report.html (the three plots and the table of points, self-contained)."""
     from pipelines.render.plots import plt
 
     ok = [r for r in rows if r.get("status") == "ok"]
@@ -227,4 +229,49 @@ def plot_cycle(rows: list[dict], keys: list[str], position_key: str, out: Path) 
     axs[-1, 0].set_xlabel(r"$\phi_1$ [deg]")
     fig.suptitle("Load shared by neighbouring tooth pairs through the mesh cycle (FE normal forces)")
     paths.append(_save(fig, out / "load_share.png"))
+    paths.append(_plot_stresses(groups, label, out / "stress_cycle.png"))
+    paths.append(write_cycle_report(ok, rows, keys, out, paths))
     return paths
+
+
+CYCLE_STRESSES = (("max_contact_pressure_mpa", "peak contact pressure [MPa]"),
+                  ("max_fillet_stress_mpa", "root stress: largest principal\nstress on the fillets [MPa]"))
+
+
+def _plot_stresses(groups: dict, label: dict, path: Path) -> Path:
+    """stress_cycle.png: peak contact pressure and root stress (largest fillet principal stress) vs φ1, per group."""
+    from pipelines.render.plots import plt
+
+    fig, axs = plt.subplots(len(CYCLE_STRESSES), 1, figsize=(8, 3.3 * len(CYCLE_STRESSES)), sharex=True, squeeze=False)
+    for ax, (key, name) in zip(axs[:, 0], CYCLE_STRESSES):
+        for q, (g, rs) in enumerate(groups.items()):
+            rs = sorted(rs, key=lambda r: _num(r["phi1_deg"]))
+            ax.plot([_num(r["phi1_deg"]) for r in rs], [_num(r.get(key)) for r in rs], "-", marker="o", ms=4,
+                    color=f"C{q % 10}", label=label[g])
+        ax.set_ylabel(name)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7, loc="best")
+    axs[-1, 0].set_xlabel(r"$\phi_1$ [deg]")
+    fig.suptitle("Peak contact pressure and root stress through the mesh cycle (FE)")
+    return _save(fig, path)
+
+
+REPORT_COLUMNS = ("id", "phi1_deg", "torque_nm", "te_unloaded_arcsec", "te_loaded_arcsec", "max_contact_pressure_mpa",
+                  "max_fillet_stress_mpa", "max_von_mises_mpa", "contact_force_n", "torque_balance_error", "dofs", "status")
+
+
+def write_cycle_report(ok: list[dict], rows: list[dict], keys: list[str], out: Path, plots: list[Path]) -> Path:
+    """``report.html`` of a stress sweep: the plots through the cycle and one table row per point (self-contained)."""
+    from pipelines.render.html import image, section, table, write_page
+
+    cols = [c for c in ("id", *keys) if c not in REPORT_COLUMNS] + list(REPORT_COLUMNS)
+    caps = {"te_loaded.png": "Loaded (TCA + FE elastic rotation) and unloaded (TCA) transmission error",
+            "load_share.png": "Load share of the modelled tooth pairs (FE normal forces)",
+            "stress_cycle.png": "Peak contact pressure and root stress through the mesh cycle"}
+    blocks = [f"<p>{len(ok)} of {len(rows)} points solved; axes: {', '.join(keys)}.</p>",
+              section("Through the mesh cycle", *(image(p, caps.get(Path(p).name, "")) for p in plots)),
+              section("Points", table(rows, [c for c in cols if any(c in r for r in rows)]))]
+    tmp = out / ".report.tmp.html"
+    write_page(tmp, "Stress sweep through the mesh cycle", *blocks)
+    os.replace(tmp, out / "report.html")
+    return out / "report.html"

@@ -69,8 +69,20 @@ def test_grid_columns_and_plots(swept):
         assert float(r["torque_balance_error"]) < 0.01
         case = out / "cases" / r["id"]
         assert (case / "result.vtu").stat().st_size > 0 and (case / "summary.json").is_file()
-    for name in ("te_loaded.png", "load_share.png"):
+    for name in ("te_loaded.png", "load_share.png", "stress_cycle.png"):
         assert (out / name).is_file() and not image_is_blank(out / name)
+
+
+def test_sweep_report_html_renders(swept, tmp_path):
+    """report.html of the sweep: self-contained (three plots embedded, a row per point) and not blank in Chromium."""
+    from tests.pipelines.html_check import embedded_images, screenshot, self_contained
+
+    _, out, rows = swept
+    text = (out / "report.html").read_text()
+    assert self_contained(text) == [] and embedded_images(text) == 3
+    assert all(r["id"] in text for r in rows)
+    png = screenshot(out / "report.html", tmp_path / "sweep.png", tmp_path, size=(1200, 1600))
+    assert not image_is_blank(png)
 
 
 def _shares(r):
