@@ -1,0 +1,1 @@
+"""Loaded TCA from condensed flank compliances (issue 18): :mod:`.compliance`, :mod:`.contact`, :mod:`.run`."""
