@@ -254,8 +254,7 @@ def fe_check(model: LTCAModel, rows: list, indices: list[int], out: Path | None 
         fe_sh = {k.split("/", 1)[-1]: v for k, v in next(iter(s["load_share"].values()))["teeth"].items()}
         names = sorted(set(fe_sh) | {k[6:] for k in r if k.startswith("share.")})
         dsh = max(abs(fe_sh.get(k, 0.0) - (r.get(f"share.{k}") or 0.0)) for k in names)
-        arm = abs(float(np.cross(np.asarray(s["contact_point_mm"]) - model.case.pair.mounts()[1].origin,
-                                 mesh_contact(model.tca, c.phi1).normal) @ model.case.pair.mounts()[1].axis))
+        arm = abs(mesh_contact(model.tca, c.phi1).arms[1])
         k_fe = s["contact_force_n"] / (abs(rot) * ARCSEC * arm) * 1e-3 if rot else float("inf")
         pts.append({"phi1_deg": r["phi1_deg"], "torque_nm": r["torque_nm"],
                     "fe_elastic_rotation_arcsec": rot, "ltca_elastic_rotation_arcsec": r["elastic_rotation_arcsec"],
