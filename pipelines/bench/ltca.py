@@ -23,7 +23,6 @@ import os
 import time
 from pathlib import Path
 
-import numpy as np
 
 from pipelines.cases.reader import load_case
 from pipelines.ltca.case import read_ltca_case

@@ -50,7 +50,7 @@ from tca.errors import ConvergenceError, GeometryError
 from tca.pair import GearPair
 from tca.planetary_mesh import MeshTE
 
-from pipelines.ltca.compliance import FlankCompliance, weber_flattening
+from pipelines.ltca.compliance import weber_flattening
 
 __all__ = ["ContactLines", "contact_lines", "LoadedContact", "solve_contact"]
 

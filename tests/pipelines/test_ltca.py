@@ -3,7 +3,6 @@ forms, input checks, the CLI, and the check against the full contact FE on a coa
 
 import copy
 import dataclasses
-import math
 
 import numpy as np
 import pytest
