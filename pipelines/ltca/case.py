@@ -26,7 +26,9 @@ from tca.errors import InputError
 from pipelines.cases.schema import Table
 from pipelines.stress.case import StressCase, read_stress_case
 
-__all__ = ["LTCAOptions", "read_ltca_case"]
+__all__ = ["LTCAOptions", "read_ltca_case", "LOCAL"]
+
+LOCAL = ("strip", "weber")
 
 
 @dataclass(frozen=True)
@@ -40,6 +42,7 @@ class LTCAOptions:
     slice: float | None = None
     reach: float = 0.05  # [mm]
     check_positions: int = 0
+    local: str = "strip"  # constant of the flattening formula (pipelines.ltca.compliance): 'strip' or 'weber'
 
     def __post_init__(self):
         if not (isinstance(self.positions, int) and 1 <= self.positions <= 100000):
@@ -54,6 +57,8 @@ class LTCAOptions:
                 raise InputError(f"ltca.{k}_mm", v, "> 0 mm")
         if not (self.reach > 0 and math.isfinite(self.reach)):
             raise InputError("ltca.reach_um", self.reach * 1e3, "> 0 um")
+        if self.local not in LOCAL:
+            raise InputError("ltca.local", self.local, "one of " + ", ".join(repr(x) for x in LOCAL))
         if not (isinstance(self.check_positions, int) and 0 <= self.check_positions <= self.positions):
             raise InputError("ltca.check_positions", self.check_positions, f"an integer in [0, positions = {self.positions}]")
 
@@ -83,6 +88,7 @@ def _read_ltca(t: Table | None, torque: float) -> LTCAOptions:
         slice=t.get("slice_mm", float, None, **pos),
         reach=t.get("reach_um", float, 50.0, lo=0.0, lo_open=True, hi=5000.0) * 1e-3,
         check_positions=t.get("check_positions", int, 0, lo=0, hi=100),
+        local=t.get("local", str, "strip", choices=LOCAL),
     )
     t.done()
     return o

@@ -19,8 +19,8 @@ Compliance of slice s under the slice loads F [N]:
     δ_s = sum_t W_st F_t + δ_loc(w_s),   W = sum_i A_i C_i A_i^T,  w_s = F_s / Δs [N/mm],
 
 A_i the bilinear weights of the slice points on gear i's flank grid and C_i its condensed
-compliance (:mod:`pipelines.ltca.compliance`, global part), δ_loc Weber's flattening of both
-bodies with the Hertz half-width b_s = (8 w_s R (1 - ν²) / (π E))^(1/2), R = 1/λ2 (Johnson 1985,
+compliance (:mod:`pipelines.ltca.compliance`, global part), δ_loc the Hertzian flattening of both
+bodies (:func:`pipelines.ltca.compliance.flattening`, constant c) with the Hertz half-width b_s = (8 w_s R (1 - ν²) / (π E))^(1/2), R = 1/λ2 (Johnson 1985,
 Eq. 4.43 for two cylinders of one material).
 
 Contact problem (linear complementarity with torque balance). The driven gear turns rigidly by
@@ -50,7 +50,7 @@ from tca.errors import ConvergenceError, GeometryError
 from tca.pair import GearPair
 from tca.planetary_mesh import MeshTE
 
-from pipelines.ltca.compliance import weber_flattening
+from pipelines.ltca.compliance import flattening
 
 __all__ = ["ContactLines", "contact_lines", "LoadedContact", "solve_contact"]
 
@@ -211,12 +211,12 @@ class LoadedContact:
     fixed_point: int
 
 
-def _local(F, lines: ContactLines, E: float, nu: float, w_guess: float) -> np.ndarray:
+def _local(F, lines: ContactLines, E: float, nu: float, c: float, w_guess: float) -> np.ndarray:
     """Local compliance δ_loc(w_s) / F_s [mm/N] at the current loads (w_guess where F_s = 0)."""
     w = np.where(F > 0, F / lines.ds, w_guess)
     Es = E / (2.0 * (1.0 - nu**2))
     b = np.sqrt(4.0 * w * lines.radius / (math.pi * Es))
-    d = weber_flattening(w, b, lines.depth[:, 0], E, nu) + weber_flattening(w, b, lines.depth[:, 1], E, nu)
+    d = flattening(w, b, lines.depth[:, 0], E, nu, c) + flattening(w, b, lines.depth[:, 1], E, nu, c)
     return d / (w * lines.ds)
 
 
@@ -253,9 +253,9 @@ def _active_set(M, g, a, T, A0, maxit=200):
     raise ConvergenceError("ltca active set", "active set still changing", float("nan"), maxit)
 
 
-def solve_contact(lines: ContactLines, torque: float, E: float, nu: float, tol: float = 1e-7,
+def solve_contact(lines: ContactLines, torque: float, E: float, nu: float, c: float, tol: float = 1e-7,
                   maxit: int = 30) -> LoadedContact:
-    """Loads, elastic rotation, pressures and mesh stiffness at torque [N mm] (module docstring)."""
+    """Loads, elastic rotation, pressures and mesh stiffness at torque [N mm]; c the flattening constant (module docstring)."""
     a = lines.arm
     L0 = max(float(np.ptp(lines.xi[lines.pair == 0])), lines.ds)
     w_guess = torque / lines.arm0 / L0
@@ -263,7 +263,7 @@ def solve_contact(lines: ContactLines, torque: float, E: float, nu: float, tol: 
     A = lines.gap <= lines.gap.min() + 1e-12
     its = 0
     for fp in range(1, maxit + 1):
-        M = lines.W + np.diag(_local(F, lines, E, nu, w_guess))
+        M = lines.W + np.diag(_local(F, lines, E, nu, c, w_guess))
         F_new, delta, it = _active_set(M, lines.gap, a, torque, A)
         its += it
         change = float(np.abs(F_new - F).max())

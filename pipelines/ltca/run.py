@@ -32,7 +32,7 @@ from tca.pair_tca import ARCSEC, run_pair_tca
 from tca.planetary_mesh import MeshTE
 
 from pipelines.ltca.case import LTCAOptions
-from pipelines.ltca.compliance import flank_compliance
+from pipelines.ltca.compliance import flank_compliance, strip_constant, weber_constant
 from pipelines.ltca.contact import contact_lines, solve_contact
 from pipelines.stress.case import StressCase
 from pipelines.stress.model import ELEMENTS
@@ -55,6 +55,7 @@ class LTCAModel:
     mte: MeshTE
     flanks: tuple
     sizes: tuple  # (profile, axial, slice) [mm]
+    local: float  # constant c of the Hertzian flattening (pipelines.ltca.compliance.flattening)
     build_s: float
     tca_s: float
 
@@ -79,7 +80,10 @@ def build_model(case: StressCase, opts: LTCAOptions, say=None) -> LTCAModel:
             say(f"build: {g.name}: {fc.info['elements']} elements, {fc.info['dofs']} DOF, {fc.info['flank_nodes']} flank nodes "
                 f"condensed in {fc.info['total_s']:.1f} s")
         flanks.append(fc)
-    return LTCAModel(case, opts, r, mte, tuple(flanks), (hu, hz, ds), time.perf_counter() - t0, t_tca)
+    c_loc = strip_constant(case.fe.material) if opts.local == "strip" else weber_constant(case.fe.nu)
+    if say is not None:
+        say(f"build: Hertzian flattening constant c = {c_loc:+.4f} ({opts.local})")
+    return LTCAModel(case, opts, r, mte, tuple(flanks), (hu, hz, ds), c_loc, time.perf_counter() - t0, t_tca)
 
 
 def progress_bar(prefix: str, stream=None):
@@ -123,7 +127,7 @@ def solve_positions(model: LTCAModel, phis, torques, bar=None) -> tuple[list, li
         names = [_pair_name(model, t) for t in L.teeth]
         for T in torques:
             t2 = time.perf_counter()
-            s = solve_contact(L, T, E, nu)
+            s = solve_contact(L, T, E, nu, model.local)
             t_solve += time.perf_counter() - t2
             tot = float(s.F.sum())
             row = {"phi1_deg": math.degrees(phi), "torque_nm": T * 1e-3, "active_branch": L.k,
@@ -310,6 +314,7 @@ def run_ltca(case: StressCase, opts: LTCAOptions, out: Path, say=None, bar=None,
         "kind": "ltca", "title": case.title, "model": case.model, "positions": len(phis),
         "torques_nm": [T * 1e-3 for T in torques],
         "flank_grid_mm": {"profile": hu, "axial": hz, "slice": ds, "teeth": case.mesh.teeth},
+        "local": {"model": opts.local, "constant": model.local},
         "flanks": {fc.gear.name: {k: v for k, v in fc.info.items()} for fc in model.flanks},
         "build_s": model.build_s, "tca_s": model.tca_s, "solve_all_s": t_solve, "timing": timing,
         "te_loaded_peak_to_peak_arcsec": {f"{T * 1e-3:g}": float(np.ptp([r["te_loaded_arcsec"] for r in rows

@@ -121,6 +121,7 @@ def test_cli_bad_input_exit_2_no_files(tmp_path, capsys):
 # ---------------------------------------------------------------------------------------------- coarse model vs full FE
 @pytest.fixture(scope="module")
 def coarse():
+    """Flank grid 0.5 x 2 mm and the refine-0.5 FE of the same case at position 0 (about 20 s on an idle machine)."""
     case, _ = read_ltca_case(load_case(CASE))
     case = dataclasses.replace(case, mesh=dataclasses.replace(case.mesh, refine=0.5))
     opts = LTCAOptions(positions=20, torques=(case.torque,), profile_size=0.5, axial_size=2.0, slice=0.5)
@@ -131,6 +132,7 @@ def coarse():
     return model, rows, check
 
 
+@pytest.mark.slow
 def test_zero_load_limit_is_the_unloaded_te(coarse):
     """As T -> 0 the loaded TE tends to the unloaded TE of the TCA."""
     model, rows, _ = coarse
@@ -140,6 +142,7 @@ def test_zero_load_limit_is_the_unloaded_te(coarse):
     assert small[0]["te_loaded_arcsec"] == pytest.approx(small[0]["te_unloaded_arcsec"], abs=0.1)
 
 
+@pytest.mark.slow
 def test_load_shares_match_full_fe(coarse):
     _, rows, check = coarse
     p = check["positions"][0]
@@ -147,6 +150,7 @@ def test_load_shares_match_full_fe(coarse):
     assert p["share_error"] <= TARGETS["load_share"]
 
 
+@pytest.mark.slow
 @pytest.mark.xfail(strict=True, reason="measured 5.8 % here (flank grid 0.5 x 2 mm vs FE refine 0.5; 2-4 % at the "
                    "bench's defaults vs refine 1): "
                    "Weber's flattening and the centre-plane split leave the LTCA stiffer than the FE, docs/ltca.md")
@@ -155,6 +159,7 @@ def test_elastic_rotation_matches_full_fe(coarse):
     assert check["positions"][0]["rotation_error"] <= TARGETS["elastic_rotation"]
 
 
+@pytest.mark.slow
 @pytest.mark.xfail(strict=True, reason="measured 44 % below the refine-0.5 FE peak (that FE is 47 % over Hertz; the "
                    "line-slice Hertz pressure is 6 % under the elliptic Hertz peak), docs/ltca.md")
 def test_peak_pressure_matches_full_fe(coarse):
@@ -162,6 +167,7 @@ def test_peak_pressure_matches_full_fe(coarse):
     assert check["positions"][0]["pressure_error"] <= TARGETS["peak_pressure"]
 
 
+@pytest.mark.slow
 def test_mesh_stiffness_grows_where_a_second_pair_closes(coarse):
     model, rows, _ = coarse
     one = [i for i, r in enumerate(rows) if r["pairs_loaded"] == 1]
@@ -185,3 +191,14 @@ def test_cli_writes_results(tmp_path):
     lines = (out / "results.csv").read_text().strip().splitlines()
     assert len(lines) == 1 + 4
 
+
+
+def test_strip_flattening_has_the_half_plane_log_slope():
+    """The strip FE's flattening follows 2 w (1 - nu^2)/(pi E) ln(2h/b) + const (the plane-strain Hertz/Weber
+    slope, Johnson 1985 ch. 5): its constant c is the same at h/b = 10 and 30 (0.148 vs 0.146 measured)."""
+    from fem.material import STEEL
+    from pipelines.ltca.compliance import strip_constant, weber_constant
+
+    c10, c30 = strip_constant(STEEL, ratio=10.0), strip_constant(STEEL, ratio=30.0)
+    assert c10 == pytest.approx(c30, abs=0.01)  # 1 % of the bracket ln(2h/b) + c ~ 3-4
+    assert c10 > weber_constant(STEEL.nu)  # a strip of finite thickness is softer than Weber's half-plane
