@@ -29,6 +29,7 @@ AREAS = {
     "stress": ("pipelines.bench.stress", {}),
     "reliability": ("pipelines.bench.reliability", ONE_CORE),
     "standard": ("pipelines.bench.standard", {}),
+    "ltca": ("pipelines.bench.ltca", {}),
 }
 
 

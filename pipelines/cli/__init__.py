@@ -50,6 +50,7 @@ SUBCOMMANDS = {
     "stress": "pipelines.cli.stress",
     "run": "pipelines.cli.run",
     "compare": "pipelines.cli.compare",
+    "ltca": "pipelines.cli.ltca",
 }
 
 

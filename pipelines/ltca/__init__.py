@@ -1,0 +1,13 @@
+"""Loaded TCA of a gear pair from condensed flank compliances (issue 18; ``gearfe ltca``, docs/ltca.md).
+
+:mod:`.compliance` condenses each gear's flank compliance once from its hexahedral model (FE global
+part at the tooth centre plane, Weber's Hertzian flattening as the local part); :mod:`.contact`
+builds the contact lines of the pairs of teeth within reach from the TCA and solves the contact
+problem with torque balance; :mod:`.run` drives positions and torques and writes the results;
+:mod:`.case` reads the ``[ltca]`` table of a stress case.
+"""
+
+from .case import LTCAOptions, read_ltca_case
+from .run import build_model, run_ltca
+
+__all__ = ["LTCAOptions", "read_ltca_case", "build_model", "run_ltca"]
