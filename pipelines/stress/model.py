@@ -118,10 +118,10 @@ def estimate_resources(scene: Scene) -> ResourceEstimate:
     a, b, c_, d = _SECTION
     for p in scene.parts:
         s, m = p.sizes, p.gear.module
-        c = s["coarse"]
-        nz = _count(p.gear.face_width, s["axial"], c, getattr(p.focus, "extent_z", 0.0), s["growth"])
-        cbar, hbar = c / m, min(s["contact"], c) / m
-        n += nz * (a + b / cbar**2 + c_ / hbar + d * (s["teeth"] - 1) / cbar**2)
+        c = s.coarse
+        nz = _count(p.gear.face_width, s.axial, c, getattr(p.focus, "extent_z", 0.0), s.growth)
+        cbar, hbar = c / m, min(s.contact, c) / m
+        n += nz * (a + b / cbar**2 + c_ / hbar + d * (s.teeth - 1) / cbar**2)
     dofs = 3.0 * _NODES_PER_ELEMENT * n
     return ResourceEstimate(int(n), int(dofs), float(_MEM_GB_REF * (dofs / _DOF_REF) ** _MEM_EXP))
 
