@@ -88,6 +88,13 @@ _SWEEP = [
     ({"axes.0.key": "gears.sun.teeth.x"}, "axes.key"), ({"colour": 1}, "colour"),
 ]
 
+_STRESS_SWEEP = [
+    ({"positions.steps": 7}, "positions.steps"), ({"positions.start": 500}, "positions.start"),
+    ({"axes.0.values": [78.0, -1.0]}, "torque_nm"), ({"axes.0.key": "fe.youngs_modulus_mpa", "axes.0.values": [206.8]},
+                                                     "looks like GPa"),
+    ({"positions.phi1_deg": [1.0]}, "positions"), ({"axes.0.key": "mesh.refine", "axes.0.values": [0.05]}, "mesh.refine"),
+]
+
 _MESH = [
     ({"mesh.teeth": 0}, "mesh.teeth"), ({"mesh.element_type": "C3D20"}, "mesh.element_type"),
     ({"pair_case": "nope.toml"}, "pair_case"), ({"gear": "moon"}, "gear"), ({"position": "middle"}, "position"),
@@ -143,6 +150,8 @@ def corpus() -> list[tuple]:
             out.append((f"{cmd}-{i}", cmd, "stress_pair_small", edits, [], None, expect))
     for i, (edits, expect) in enumerate(_SWEEP):
         out.append((f"sweep-{i}", "sweep", "sweep_part1_misalignment", edits, [], None, expect))
+    for i, (edits, expect) in enumerate(_STRESS_SWEEP):
+        out.append((f"sweep-stress-{i}", "sweep", "sweep_stress_positions", edits, [], None, expect))
     for i, (edits, expect) in enumerate(_MESH):
         out.append((f"mesh-{i}", "mesh", "mesh_part1_sun_planet", edits, [], None, expect))
     for i, (cmd, base, args, expect) in enumerate(_ARGS):
