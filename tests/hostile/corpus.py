@@ -52,7 +52,7 @@ _PLANETARY = [
     ({"installment.d_ex_um": [1e9, 0.0, 0.0, 0.0, 0.0]}, "installment.d_ex_um"),
     ({"regulation.tol_arcsec": 0.0}, "regulation.tol_arcsec"),
     ({"regulation.max_iterations": 1}, "regulation.max_iterations"), ({"regulation.colour": 1}, "regulation.colour"),
-    ({"extra": 1}, "extra"), ({"gears.moon": {"teeth": 20}}, "gears"), ({"gears.ring.internal": False}, ""),
+    ({"extra": 1}, "extra"), ({"gears.sun.runout_um": 20.0}, "runout_um"), ({"gears.moon": {"teeth": 20}}, "gears"), ({"gears.ring.internal": False}, ""),
 ]
 
 _ISOSTATIC = [
