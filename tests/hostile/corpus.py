@@ -98,7 +98,10 @@ _STRESS_SWEEP = [
 _MESH = [
     ({"mesh.teeth": 0}, "mesh.teeth"), ({"mesh.element_type": "C3D20"}, "mesh.element_type"),
     ({"pair_case": "nope.toml"}, "pair_case"), ({"gear": "moon"}, "gear"), ({"position": "middle"}, "position"),
-    ({"mesh.growth": 10.0}, "mesh.growth"), ({"colour": 1}, "colour"), ({"mesh.colour": 1}, "mesh.colour"),
+    ({"mesh.growth": 10.0}, "mesh.growth"), ({"mesh.contact_size_mm": 0.0001}, "mesh.contact_size_mm = 0.0001"),
+    ({"mesh.coarse_size_mm": 0.01, "mesh.contact_size_mm": DELETE, "mesh.fillet_size_mm": DELETE},
+     "mesh.coarse_size_mm = 0.01"),
+    ({"mesh.teeth": 2000}, "mesh.teeth = 2000"), ({"colour": 1}, "colour"), ({"mesh.colour": 1}, "mesh.colour"),
 ]
 
 _INTERNAL_CLASH = {"gears.sun.teeth": 34, "gears.planet.teeth": 40, "gears.planet.internal": True,
