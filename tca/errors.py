@@ -22,7 +22,7 @@ class InputError(GearfeError, ValueError):
     """A value given by the user is out of its valid range (names key, value and range)."""
 
     def __init__(self, field: str, value, valid: str, why: str = ""):
-        self.field, self.value, self.valid = field, value, valid
+        self.field, self.value, self.valid, self.why = field, value, valid, why
         msg = f"{field} = {value!r} is invalid: expected {valid}"
         if why:
             msg += f" ({why})"

@@ -28,6 +28,7 @@ from __future__ import annotations
 import copy
 import dataclasses
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -35,9 +36,10 @@ from .contact import tangency_system
 from .errors import ConvergenceError
 from .newton import newton
 from .pair import GearPair
+from .pair_bounded import bounded_pass
 from .pair_result import ContactKind, ReferencePairSolution, TCAOptions, _flanks
 
-__all__ = ["has_runout", "turned_pair", "solve_candidate_pair"]
+__all__ = ["has_runout", "turned_pair", "solve_candidate_pair", "CandidateTable", "candidate_table"]
 
 
 def has_runout(pair: GearPair) -> bool:
@@ -113,3 +115,45 @@ def solve_candidate_pair(pair: GearPair, ref: ReferencePairSolution, k: int, idx
     sol = ReferencePairSolution(ref.phi1, phi2, np.where(np.isnan(X), ref.x, X), kind, resid, np.zeros(n, int), ref.j,
                                 0, tan_ok, oom)
     return sol
+
+
+@dataclass(frozen=True, eq=False)
+class CandidateTable:
+    """Contact of every candidate pair (columns, ``ks``) at every output position (rows) of a pair TCA."""
+
+    pairs: dict  # k -> the turned GearPair standing for candidate pair k
+    te: np.ndarray  # (n, K) Delta phi2 [rad], -inf where no contact
+    kind: np.ndarray  # (n, K) ContactKind
+    x: np.ndarray  # (n, K, 5) u1, v1, u2, v2, phi2
+    residual: np.ndarray  # (n, K) [mm]
+    where: np.ndarray  # (n, K) boundary codes of edge and corner contacts
+
+
+def candidate_table(pair: GearPair, ref: ReferencePairSolution, ks: np.ndarray, rjc: np.ndarray, valid: np.ndarray,
+                    opts: TCAOptions) -> CandidateTable:
+    """Candidate pairs ks at the reference indices rjc (n, K) where valid, each with its own run-out.
+
+    Edge contacts are searched, as for the reference pair, only where a pair's tangency lies above
+    the envelope of the others (bounded contacts can only lower a pair's phi2).
+    """
+    n = rjc.shape[0]
+    ratio = pair.ratio
+    turned = {int(k): turned_pair(pair, int(k)) for k in ks}
+    col = [solve_candidate_pair(pair, ref, int(k), np.unique(rjc[valid[:, q], q]), opts) if valid[:, q].any() else None
+           for q, k in enumerate(ks)]
+
+    def pick(attr, fill):
+        return np.stack([getattr(c, attr)[rjc[:, q]] if c is not None else np.full(n, fill) for q, c in enumerate(col)], 1)
+
+    env = np.where(valid, pick("phi2", -np.inf) - ratio * ref.phi1[rjc], -np.inf).max(1)
+    for q, c in enumerate(col):
+        if c is None:
+            continue
+        jj = rjc[:, q]
+        te_t = np.where(c.tangency, c.x[:, 4] - ratio * c.phi1, np.inf)[jj]
+        sel = valid[:, q] & (c.kind[jj] == ContactKind.NONE) & ~c.out_of_mesh[jj] & (
+            (te_t > env + 1e-10) | ~np.isfinite(env))
+        bounded_pass(turned[int(ks[q])], c, np.unique(jj[sel]), opts)
+    x = np.stack([c.x[rjc[:, q]] if c is not None else ref.x[rjc[:, q]] for q, c in enumerate(col)], 1)
+    return CandidateTable(turned, pick("phi2", -np.inf) - ratio * ref.phi1[rjc], pick("kind", 0), x,
+                          pick("residual", np.nan), pick("where", 0))

@@ -15,7 +15,10 @@ Procedure (section 1.4):
    transmission function of the drive is :math:`\phi_2(\phi_1) = \max_k \phi_2^{(k)}(\phi_1)`:
    the pair with the largest :math:`\Delta\phi_2` is in contact (the others have backlash).
    Transmission errors follow Eq. (1.13), :math:`\Delta\phi_2 = \phi_2 - (N_1/N_2)\phi_1`, in the
-   absolute sense of :mod:`tca.pair`; paths of contact are Eq. (1.14).
+   absolute sense of :mod:`tca.pair`; paths of contact are Eq. (1.14). With run-out (Eqs.
+   3.5–3.6) the pairs are not shifted copies of the reference pair: each is solved with the
+   eccentricity at its own angle (:mod:`tca.pair_runout`), and the transitions are interpolated
+   on the grid.
 
 The algorithms live in one module each: :mod:`tca.pair_result` (options, contact kinds, result
 types), :mod:`tca.pair_reference` (continuation of the reference pair), :mod:`tca.pair_bounded`
@@ -38,7 +41,7 @@ from .errors import GeometryError
 from .pair import GearPair
 from .pair_bounded import bounded_pass
 from .pair_reference import solve_reference_pair
-from .pair_runout import has_runout, solve_candidate_pair, turned_pair
+from .pair_runout import candidate_table, has_runout
 from .pair_result import ContactKind, PairTCAResult, ReferencePairSolution, TCAOptions, _flanks, ellipse_outlines
 from .pair_transitions import Branches, extremes, transitions
 from .units import ARCSEC
@@ -86,30 +89,9 @@ def run_pair_tca(pair: GearPair, opts: TCAOptions = TCAOptions()) -> PairTCAResu
     rjc = np.clip(rj + J, 0, 2 * J)
     if has_runout(pair):
         # every pair of teeth sees the eccentricity at its own angle (tca.pair_runout)
-        turned = {int(k): turned_pair(pair, int(k)) for k in ks}
-        sols = {int(k): solve_candidate_pair(pair, ref, int(k), np.unique(rjc[valid[:, q], q]), opts)
-                for q, k in enumerate(ks) if valid[:, q].any()}
-        col = [sols.get(int(k), None) for k in ks]
-        # bounded contacts where a pair's tangency lies above the envelope of the others (as above)
-        te_c = np.stack([c.phi2[rjc[:, q]] if c is not None else np.full(len(out_j), -np.inf)
-                         for q, c in enumerate(col)], 1) - ratio * ref.phi1[rjc]
-        env = np.where(valid, te_c, -np.inf).max(1)
-        for q, c in enumerate(col):
-            if c is None:
-                continue
-            jj, ok = rjc[:, q], valid[:, q]
-            te_t = np.where(c.tangency, c.x[:, 4] - ratio * c.phi1, np.inf)[jj]
-            sel = ok & (c.kind[jj] == ContactKind.NONE) & ~c.out_of_mesh[jj] & ((te_t > env + 1e-10) | ~np.isfinite(env))
-            bounded_pass(turned[int(ks[q])], c, np.unique(jj[sel]), opts)
-
-        def pick(attr, fill):
-            return np.stack([getattr(c, attr)[rjc[:, q]] if c is not None else np.full(len(out_j), fill)
-                             for q, c in enumerate(col)], 1)
-
-        te_c = pick("phi2", -np.inf) - ratio * ref.phi1[rjc]
-        kind_all, x_all = pick("kind", 0), np.stack([c.x[rjc[:, q]] if c is not None else ref.x[rjc[:, q]]
-                                                       for q, c in enumerate(col)], 1)
-        res_all, where_all = pick("residual", np.nan), pick("where", 0)
+        tab = candidate_table(pair, ref, ks, rjc, valid, opts)
+        turned, kind_all, x_all, res_all, where_all = tab.pairs, tab.kind, tab.x, tab.residual, tab.where
+        te_c = tab.te
         cand = np.where(valid, te_c, -np.inf)
     else:
         bounded_pass(pair, ref, np.flatnonzero(need), opts)

@@ -19,6 +19,10 @@ def read_train(case: Table) -> PlanetaryTrain:
     extra = sorted(set(gears) - {"sun", "planet", "ring"})
     if extra:
         raise InputError(f"gears.{extra[0]}", extra[0], "one of 'sun', 'planet', 'ring'")
+    for name, g in gears.items():
+        if g.runout > 0:  # the Part 1 train repeats each mesh's reference pair (tca.planetary_mesh.MeshTE)
+            raise InputError(f"gears.{name}.runout_um", g.runout * 1e3, "0 in a Part 1 planetary case (run-out is "
+                             "analysed by pair cases and by isostatic cases, kind = 'isostatic')")
     n = case.get("planets", int, lo=1, hi=20)
     gap = case.get("member_gap_mm", float, lo=0.0, hi=1000.0)
     return PlanetaryTrain(gears["sun"], gears["planet"], gears["ring"], n, gap)

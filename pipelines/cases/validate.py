@@ -38,7 +38,7 @@ def validate_case(case: Table) -> str:
         new = FIELD_NAMES.get(kind, {}).get(e.field)
         if new is None:
             raise
-        raise InputError(new, e.value, e.valid) from None
+        raise InputError(new, e.value, e.valid, e.why) from None
     t.done()
     return kind
 

@@ -167,7 +167,7 @@ def _validate(task: str, point: dict) -> None:
             validate_stress(point["case"])
     except InputError as e:  # name the grid point the error belongs to
         where = ", ".join(f"{k} = {v!r}" for k, v in point["values"].items())
-        raise InputError(e.field, e.value, e.valid, f"grid point {where}") from None
+        raise InputError(e.field, e.value, e.valid, "; ".join(filter(None, (e.why, f"grid point {where}")))) from None
     except GearfeError as e:
         where = ", ".join(f"{k} = {v!r}" for k, v in point["values"].items())
         raise InputError("axes", where, "a valid case at every grid point", str(e)) from None

@@ -33,7 +33,10 @@ def plot_pair_te(r: PairTCAResult, path: Path, title: str = "") -> Path:
     pitch = 2 * math.pi / r.pair.gear1.teeth
     te_ref = (ref.phi2 - r.pair.ratio * ref.phi1) / ARCSEC
     lo, hi = r.phi1.min(), r.phi1.max()
-    for k in range(-4, 5):
+    # the neighbouring pairs repeat the reference pair shifted by a pitch, except with run-out
+    # (each pair then sees the eccentricity at its own angle: tca.pair_runout), where they are not drawn
+    shifts = range(-4, 5) if not (r.pair.gear1.runout or r.pair.gear2.runout) else ()
+    for k in shifts:
         x = ref.phi1 + k * pitch
         sel = (x >= lo - 1e-12) & (x <= hi + 1e-12) & np.isfinite(te_ref)
         if sel.any():

@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import math
 import os
+import dataclasses
 from dataclasses import dataclass
 
 from fem import Body, ContactOptions, ContactPair, FEModel, Fixed, Material, Rigid, SolverOptions, solve
@@ -50,7 +51,7 @@ from tca.errors import ConvergenceError, InputError
 from pipelines.stress.scene import Interface, Scene
 
 __all__ = ["FESettings", "mesh_scene", "fe_model", "solve_scene", "pair_name", "ResourceEstimate",
-           "estimate_resources", "check_resources", "memory_limit_gb"]
+           "estimate_resources", "check_resources", "memory_limit_gb", "part_elements"]
 
 ELEMENTS = {"C3D8I": "hex8i", "C3D8": "hex8"}
 
@@ -109,19 +110,22 @@ class ResourceEstimate:
 def _count(L: float, h: float, c: float, ext: float, q: float) -> float:
     """Elements along a length L graded from h (over +-ext) to c with growth q (module docstring)."""
     h = min(h, c)
-    return min(L / h, 2 * ext / h + 2 * math.log(c / h) / math.log(q) + L / c)
+    return min(L / h, 2 * ext / h + 2 * math.log(c / h) / math.log(max(q, 1.01)) + L / c)
+
+
+def part_elements(gear, sizes: dict, teeth: int, extent_z: float = 0.0) -> float:
+    """Elements of one part's mesh (module docstring) from its sizes [mm] (keys coarse, contact, axial, growth)."""
+    a, b, c_, d = _SECTION
+    m, c = gear.module, sizes["coarse"]
+    nz = _count(gear.face_width, min(sizes["axial"], c), c, extent_z, sizes["growth"])
+    cbar, hbar = c / m, min(sizes["contact"], c) / m
+    return nz * (a + b / cbar**2 + c_ / hbar + d * (teeth - 1) / cbar**2)
 
 
 def estimate_resources(scene: Scene) -> ResourceEstimate:
     """Element, DOF and memory estimate of the scene's model from its size rules (no meshing)."""
-    n = 0.0
-    a, b, c_, d = _SECTION
-    for p in scene.parts:
-        s, m = p.sizes, p.gear.module
-        c = s.coarse
-        nz = _count(p.gear.face_width, s.axial, c, getattr(p.focus, "extent_z", 0.0), s.growth)
-        cbar, hbar = c / m, min(s.contact, c) / m
-        n += nz * (a + b / cbar**2 + c_ / hbar + d * (s.teeth - 1) / cbar**2)
+    n = sum(part_elements(p.gear, dataclasses.asdict(p.sizes), p.sizes.teeth, getattr(p.focus, "extent_z", 0.0))
+            for p in scene.parts)
     dofs = 3.0 * _NODES_PER_ELEMENT * n
     return ResourceEstimate(int(n), int(dofs), float(_MEM_GB_REF * (dofs / _DOF_REF) ** _MEM_EXP))
 

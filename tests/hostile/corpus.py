@@ -52,7 +52,7 @@ _PLANETARY = [
     ({"installment.d_ex_um": [1e9, 0.0, 0.0, 0.0, 0.0]}, "installment.d_ex_um"),
     ({"regulation.tol_arcsec": 0.0}, "regulation.tol_arcsec"),
     ({"regulation.max_iterations": 1}, "regulation.max_iterations"), ({"regulation.colour": 1}, "regulation.colour"),
-    ({"extra": 1}, "extra"), ({"gears.moon": {"teeth": 20}}, "gears"), ({"gears.ring.internal": False}, ""),
+    ({"extra": 1}, "extra"), ({"gears.sun.runout_um": 20.0}, "runout_um"), ({"gears.moon": {"teeth": 20}}, "gears"), ({"gears.ring.internal": False}, ""),
 ]
 
 _ISOSTATIC = [
@@ -88,10 +88,20 @@ _SWEEP = [
     ({"axes.0.key": "gears.sun.teeth.x"}, "axes.key"), ({"colour": 1}, "colour"),
 ]
 
+_STRESS_SWEEP = [
+    ({"positions.steps": 7}, "positions.steps"), ({"positions.start": 500}, "positions.start"),
+    ({"axes.0.values": [78.0, -1.0]}, "torque_nm"), ({"axes.0.key": "fe.youngs_modulus_mpa", "axes.0.values": [206.8]},
+                                                     "looks like GPa"),
+    ({"positions.phi1_deg": [1.0]}, "positions"), ({"axes.0.key": "mesh.refine", "axes.0.values": [0.05]}, "mesh.refine"),
+]
+
 _MESH = [
     ({"mesh.teeth": 0}, "mesh.teeth"), ({"mesh.element_type": "C3D20"}, "mesh.element_type"),
     ({"pair_case": "nope.toml"}, "pair_case"), ({"gear": "moon"}, "gear"), ({"position": "middle"}, "position"),
-    ({"mesh.growth": 10.0}, "mesh.growth"), ({"colour": 1}, "colour"), ({"mesh.colour": 1}, "mesh.colour"),
+    ({"mesh.growth": 10.0}, "mesh.growth"), ({"mesh.contact_size_mm": 0.0001}, "mesh.contact_size_mm = 0.0001"),
+    ({"mesh.coarse_size_mm": 0.01, "mesh.contact_size_mm": DELETE, "mesh.fillet_size_mm": DELETE},
+     "mesh.coarse_size_mm = 0.01"),
+    ({"mesh.teeth": 2000}, "mesh.teeth = 2000"), ({"colour": 1}, "colour"), ({"mesh.colour": 1}, "mesh.colour"),
 ]
 
 _INTERNAL_CLASH = {"gears.sun.teeth": 34, "gears.planet.teeth": 40, "gears.planet.internal": True,
@@ -143,6 +153,8 @@ def corpus() -> list[tuple]:
             out.append((f"{cmd}-{i}", cmd, "stress_pair_small", edits, [], None, expect))
     for i, (edits, expect) in enumerate(_SWEEP):
         out.append((f"sweep-{i}", "sweep", "sweep_part1_misalignment", edits, [], None, expect))
+    for i, (edits, expect) in enumerate(_STRESS_SWEEP):
+        out.append((f"sweep-stress-{i}", "sweep", "sweep_stress_positions", edits, [], None, expect))
     for i, (edits, expect) in enumerate(_MESH):
         out.append((f"mesh-{i}", "mesh", "mesh_part1_sun_planet", edits, [], None, expect))
     for i, (cmd, base, args, expect) in enumerate(_ARGS):
