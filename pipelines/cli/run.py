@@ -35,7 +35,8 @@ def add_overrides(p: argparse.ArgumentParser) -> None:
     """Options that override case keys (shared with ``gearfe compare``)."""
     g = p.add_mutually_exclusive_group()
     g.add_argument("--phi1-deg", type=float, default=None, help="analyse at this driving-gear angle [deg]")
-    g.add_argument("--position", default=None, help="'max_te' (default), 'min_te' or an index of the TCA grid")
+    g.add_argument("--position", default=None, help="'max_te' (default), 'min_te', an index of the TCA grid; pair model also "
+                   "'pitch', 'hpstc', 'lpstc'")
     p.add_argument("--refine", type=float, default=None, help="element sizes divided by this factor ([mesh] refine)")
 
 
@@ -51,9 +52,11 @@ def read_with_overrides(path, args) -> StressCase:
     data = dict(t.data)
     if args.phi1_deg is not None:
         data.pop("position", None)
+        data.pop("roll_deg", None)
         data["phi1_deg"] = args.phi1_deg
     if args.position is not None:
         data.pop("phi1_deg", None)
+        data.pop("roll_deg", None)
         data["position"] = int(args.position) if args.position.lstrip("-").isdigit() else args.position
     if args.refine is not None:
         data["mesh"] = {**data.get("mesh", {}), "refine": args.refine}
