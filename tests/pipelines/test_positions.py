@@ -82,3 +82,20 @@ def test_positions_off_the_path_are_input_errors(drive):
         path_angle(c.pair, None, math.radians(80.0))
     with pytest.raises(InputError, match="position"):
         path_angle(c.pair, "tip")
+
+
+def test_shifted_spur_pair_of_the_issue_runs_at_every_angle():
+    """16/24 teeth with profile shifts +0.2/-0.2 (issue 12): every angle of a cycle builds its scene."""
+    t = load_case(CASES_DIR / "stress_spur_pair.toml")
+    t.data["gears"]["pinion"].update(teeth=16, profile_shift=0.2)
+    t.data["gears"]["wheel"].update(profile_shift=-0.2)
+    c = read_stress_case(t)
+    r = run_pair_tca(c.pair, c.tca)
+    path = path_of_contact(c.pair)
+    assert path.contact_ratio > 1.2
+    for pos in ("pitch", "hpstc", "lpstc"):
+        mc = mesh_contact(r, position_angle(r, pos))
+        assert _t(path, mc.point) == pytest.approx(path.t(pos), abs=2e-3)
+    for phi in path.phi1(path.t_c) + np.linspace(0.0, c.pair.gear1.pitch_angle, 41)[:-1]:
+        sc = pair_scene(c.pair, r, float(phi), c.torque, c.mesh, c.fe.E, c.fe.nu)
+        assert sc.interfaces[0].hertz.line
