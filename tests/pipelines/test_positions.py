@@ -99,3 +99,21 @@ def test_shifted_spur_pair_of_the_issue_runs_at_every_angle():
     for phi in path.phi1(path.t_c) + np.linspace(0.0, c.pair.gear1.pitch_angle, 41)[:-1]:
         sc = pair_scene(c.pair, r, float(phi), c.torque, c.mesh, c.fe.E, c.fe.nu)
         assert sc.interfaces[0].hertz.line
+
+
+def test_next_pair_at_the_hpstc_touches_unless_its_tip_is_relieved():
+    """At the HPSTC the entering pair meets the wheel's tip: a gap of 0 for unmodified flanks, C_a with a relief.
+
+    Independent truth: the relief's amount at the tip circle (15 um, pipelines/cases/stress_spur_pair_relief.toml);
+    measured 15.25 um (the rack's normal relief mapped onto the involute, within 3 %, tests/tca/test_modifications.py).
+    """
+    from dataclasses import replace
+
+    from pipelines.stress.run import build_scene
+
+    plain = read_stress_case(load_case(CASES_DIR / "stress_spur_pair.toml"))
+    relief = read_stress_case(load_case(CASES_DIR / "stress_spur_pair_relief.toml"))
+    assert build_scene(replace(plain, position="hpstc"))[0].info["next_pair_gap_um"] == pytest.approx(0.0, abs=1e-6)
+    assert build_scene(replace(plain, position="pitch"))[0].info["next_pair_gap_um"] == math.inf
+    gap = build_scene(replace(relief, position="hpstc"))[0].info["next_pair_gap_um"]
+    assert gap == pytest.approx(relief.pair.gear2.tip_relief.amount * 1e3, rel=0.03)
