@@ -237,7 +237,8 @@ def mesh_contact(result: PairTCAResult, phi: float) -> MeshContact:
     for j in range(len(ks)):
         if j != q and math.isfinite(val[j]):
             i0j, wj, _ = _grid_place(ref, phi, int(ks[j]), p1)
-            if _usable(ok, i0j, wj) or j not in tied:
+            near = any(0 <= i < len(ok) and ok[i] for i in ((i0j, i0j + 1) if wj > 0 else (i0j,)))
+            if near or j not in tied:  # a tied pair at an end of its own contact (a tip) does touch
                 te_next = max(te_next, float(val[j]))
     if w > 0:
         x = (1 - w) * ref.x[i0] + w * ref.x[i0 + 1]

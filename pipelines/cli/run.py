@@ -40,7 +40,8 @@ def add_overrides(p: argparse.ArgumentParser) -> None:
     """Options that override case keys (shared with ``gearfe compare``)."""
     g = p.add_mutually_exclusive_group()
     g.add_argument("--phi1-deg", type=float, default=None, help="analyse at this driving-gear angle [deg]")
-    g.add_argument("--position", default=None, help="'max_te' (default), 'min_te' or an index of the TCA grid")
+    g.add_argument("--position", default=None, help="'max_te' (default), 'min_te', an index of the TCA grid; pair model also "
+                   "'pitch', 'hpstc', 'lpstc'")
     p.add_argument("--refine", type=float, default=None, help="element sizes divided by this factor ([mesh] refine)")
 
 
@@ -57,15 +58,13 @@ def read_with_overrides(path, args) -> StressCase:
     data = dict(t.data)
     if args.phi1_deg is not None:
         data.pop("position", None)
+        data.pop("roll_deg", None)
         data["phi1_deg"] = args.phi1_deg
     if args.position is not None:
         data.pop("phi1_deg", None)
-        if re.fullmatch(r"-?[0-9]{1,9}", args.position):
-            data["position"] = int(args.position)
-        elif args.position in ("max_te", "min_te"):
-            data["position"] = args.position
-        else:
-            raise InputError("--position", args.position, "'max_te', 'min_te' or an integer index of the TCA grid")
+        data.pop("roll_deg", None)
+        # an integer index (ASCII digits only: '²'.isdigit() is true), else a named position checked by the case reader
+        data["position"] = int(args.position) if re.fullmatch(r"-?[0-9]{1,9}", args.position) else args.position
     if args.refine is not None:
         if not isinstance(data.get("mesh", {}), dict):
             raise InputError("mesh", data["mesh"], "a table [mesh] (--refine sets mesh.refine)")

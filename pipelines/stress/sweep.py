@@ -22,7 +22,8 @@ leads. Both in arcsec.
 
 Gap to the next pair of teeth (``tca_second_pair_gap_arcsec``, pair model): at :math:`\phi_1`, the
 difference between the TE branch in contact and the next largest branch of the other tooth
-pairs (:class:`tca.planetary_mesh.MeshTE`): the rigid-body rotation the driven gear must lag by
+pairs (:func:`tca.pair_te.mesh_contact`, ``next_gap``; a tangency-only branch tied with the pair in
+contact — conjugate flanks touching outside their working areas — does not count): the rigid-body rotation the driven gear must lag by
 before a second pair touches. Where a branch is the tangency of the extended surfaces (its bounded
 contact was not searched because it lies below the envelope) it is an upper bound of that pair's
 :math:`\Delta\phi`, so the value is a lower bound of the gap. A second pair cannot carry load while
@@ -115,11 +116,10 @@ def validate_stress(case: dict) -> None:
 def second_pair_gap(case, phi1: float) -> float:
     """Pair model: Δφ2 of the pair in contact minus the next branch at phi1 [rad] (a lower bound, module docstring)."""
     from tca.pair_tca import run_pair_tca
-    from tca.planetary_mesh import MeshTE
+    from tca.pair_te import mesh_contact
 
-    val, _ = MeshTE.from_result(run_pair_tca(case.pair, case.tca)).branches(np.array([phi1]))
-    v = np.sort(val[0][np.isfinite(val[0])])[::-1]
-    return float(v[0] - v[1]) if len(v) > 1 else float("inf")
+    mc = mesh_contact(run_pair_tca(case.pair, case.tca), phi1)  # next_gap: tca.pair_te (ties of conjugate flanks)
+    return mc.next_gap / abs(mc.arms[1]) if mc.arms[1] else float("inf")
 
 
 def loaded_te(case, summary: dict) -> dict:

@@ -82,3 +82,38 @@ def test_positions_off_the_path_are_input_errors(drive):
         path_angle(c.pair, None, math.radians(80.0))
     with pytest.raises(InputError, match="position"):
         path_angle(c.pair, "tip")
+
+
+def test_shifted_spur_pair_of_the_issue_runs_at_every_angle():
+    """16/24 teeth with profile shifts +0.2/-0.2 (issue 12): every angle of a cycle builds its scene."""
+    t = load_case(CASES_DIR / "stress_spur_pair.toml")
+    t.data["gears"]["pinion"].update(teeth=16, profile_shift=0.2)
+    t.data["gears"]["wheel"].update(profile_shift=-0.2)
+    c = read_stress_case(t)
+    r = run_pair_tca(c.pair, c.tca)
+    path = path_of_contact(c.pair)
+    assert path.contact_ratio > 1.2
+    for pos in ("pitch", "hpstc", "lpstc"):
+        mc = mesh_contact(r, position_angle(r, pos))
+        assert _t(path, mc.point) == pytest.approx(path.t(pos), abs=2e-3)
+    for phi in path.phi1(path.t_c) + np.linspace(0.0, c.pair.gear1.pitch_angle, 41)[:-1]:
+        sc = pair_scene(c.pair, r, float(phi), c.torque, c.mesh, c.fe.E, c.fe.nu)
+        assert sc.interfaces[0].hertz.line
+
+
+def test_next_pair_at_the_hpstc_touches_unless_its_tip_is_relieved():
+    """At the HPSTC the entering pair meets the wheel's tip: a gap of 0 for unmodified flanks, C_a with a relief.
+
+    Independent truth: the relief's amount at the tip circle (15 um, pipelines/cases/stress_spur_pair_relief.toml);
+    measured 15.25 um (the rack's normal relief mapped onto the involute, within 3 %, tests/tca/test_modifications.py).
+    """
+    from dataclasses import replace
+
+    from pipelines.stress.run import build_scene
+
+    plain = read_stress_case(load_case(CASES_DIR / "stress_spur_pair.toml"))
+    relief = read_stress_case(load_case(CASES_DIR / "stress_spur_pair_relief.toml"))
+    assert build_scene(replace(plain, position="hpstc"))[0].info["next_pair_gap_um"] == pytest.approx(0.0, abs=1e-6)
+    assert build_scene(replace(plain, position="pitch"))[0].info["next_pair_gap_um"] == math.inf
+    gap = build_scene(replace(relief, position="hpstc"))[0].info["next_pair_gap_um"]
+    assert gap == pytest.approx(relief.pair.gear2.tip_relief.amount * 1e3, rel=0.03)
