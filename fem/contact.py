@@ -160,12 +160,6 @@ class ContactSet:
             p = np.where(p0 > 0, np.maximum(p0 + (F - M @ p0) / D, 0.0), 0.0)
             return np.where(D > 0, p, np.nan)
 
-    def tributary_area(self, n_nodes: int) -> np.ndarray:
-        """Slave-surface area A_a = int N_a dA per node [mm^2] (n,), 0 off the slave surfaces."""
-        if self.mass is None:
-            return np.bincount(self.node, weights=self.area, minlength=n_nodes)[:n_nodes]
-        return np.asarray(self.mass[:n_nodes][:, :n_nodes].sum(axis=1)).ravel()
-
 
 def _faces(mesh: HexMesh, name: str, field: str) -> np.ndarray:
     if name not in mesh.face_sets:
