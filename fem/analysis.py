@@ -177,17 +177,17 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
         pressure = np.nan_to_num(cs.pressure(lam_all, mesh.n_points))
         force_nodes = cs.nodal_forces(lam_all, mesh.n_points)
         gap_nodes = cs.to_nodes(gap_all, mesh.n_points)
-        A_nodes = cs.tributary_area(mesh.n_points)
         for ip, pair in enumerate(model.contacts):
             sel = np.flatnonzero(cs.pair == ip)
             fv = np.asarray((cs.normal[sel] * lam_all[sel, None]).sum(axis=0))
             p_pair = np.nan_to_num(cs.pressure(lam_all, mesh.n_points, rows=sel))
-            act = np.flatnonzero(p_pair > 0.0)
+            act = np.flatnonzero(p_pair > 0.0)  # slave nodes with pressure
             F_pair = cs.nodal_forces(lam_all, mesh.n_points, rows=sel)
             nrm = fv if np.linalg.norm(fv) > 0 else cs.normal[sel].sum(axis=0)
             patch = contact_patch(mesh.points[act], F_pair[act], nrm) if len(act) and np.linalg.norm(nrm) > 0 else None
             pairs.append(PairResult(pair.name, pair.group, float(lam_all[sel].sum()), tuple(float(x) for x in fv),
-                                    float(_closed_area(cs, sel, gap_all, sol) if cs.mass is not None else A_nodes[act].sum()),
+                                    _closed_area(cs, sel, gap_all, sol) if cs.mass is not None else
+                                    float(cs.area[sel][lam_all[sel] > 0.0].sum()),  # tributary areas of the active nodes
                                     float(p_pair.max(initial=0.0)), len(act),
                                     int(cs.candidate[sel].sum()), patch.semi_axes if patch else (0.0, 0.0)))
     reaction = np.zeros((mesh.n_points, 3))

@@ -167,7 +167,8 @@ def bench_hertz(quick: bool) -> dict:
         for n in ((3, 4) if quick else (3, 4, 6, 8)):
             point.append(hertz_row("point", n, points))
     formulation = []
-    for points, q in (("nodes", 0), ("nodes", 2), ("nodes", 3), ("gauss", 2), ("gauss", 3)):
+    combos = (("nodes", 0), ("nodes", 2), ("gauss", 2)) + ((("nodes", 3), ("gauss", 3)) if not quick else ())
+    for points, q in combos:
         for ratio in ((0.67, 1.0) if quick else (0.5, 0.67, 0.8, 1.0, 1.25)):
             mesh, model, ref = hertz_line(block_ratio=ratio, options=ContactOptions(quadrature=q, points=points))
             r = solve(mesh, model)
