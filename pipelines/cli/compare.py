@@ -182,6 +182,7 @@ def handle(args) -> int:
         (tmp / "compare.json").write_text(json.dumps({"rows": rows, "finding": f, "cases": {k: str(v) for k, v in paths.items()},
                                                       "elapsed_s": time.perf_counter() - t0}, indent=2) + "\n")
     print((Path(args.out) / "compare.md").read_text())
+    print(f"report: {Path(args.out) / 'report.html'} (self-contained, both designs side by side)")
     print(f"images: {Path(args.out) / 'compare_zones.png'}, {Path(args.out) / 'compare_pressure.png'}, "
           f"{Path(args.out) / 'compare_overview.png'}; each design's run in {args.out}/new and {args.out}/conventional")
     return 0

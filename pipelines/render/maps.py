@@ -58,7 +58,8 @@ def plot_flank_pressure(zr: np.ndarray, triangles: np.ndarray, pressure: np.ndar
     tri = mtri.Triangulation(zr[:, 0], zr[:, 1], np.asarray(triangles))
     peak = float(p.max(initial=0.0))
     panels = 2 if zoom and point is not None else 1
-    fig, axs = plt.subplots(1, panels, figsize=(6.2 * panels, 5.4), squeeze=False, layout="constrained")
+    fig, axs = plt.subplots(1, panels, figsize=(6.2 * panels, 5.6), squeeze=False)
+    fig.subplots_adjust(left=0.065 * 2 / panels, right=0.9, bottom=0.2, top=0.9, wspace=0.2)
     for k, ax in enumerate(axs[0]):
         ax.set_facecolor("0.85")
         pc = ax.tripcolor(tri, p, shading="gouraud", cmap="jet", vmin=0.0, vmax=peak or 1.0)
@@ -74,16 +75,16 @@ def plot_flank_pressure(zr: np.ndarray, triangles: np.ndarray, pressure: np.ndar
         ax.set_xlabel("z [mm] (face width)")
         ax.set_ylabel("radius [mm]")
         if k == 1:
-            ax.set_xlim(point[0] - zoom, point[0] + zoom)
+            ax.set_xlim(max(point[0] - zoom, zr[:, 0].min() - 0.5), min(point[0] + zoom, zr[:, 0].max() + 0.5))
             ax.set_ylim(max(point[1] - 0.75 * zoom, zr[:, 1].min() - 0.3), min(point[1] + 0.75 * zoom, zr[:, 1].max() + 0.3))
             ax.set_title(f"around the TCA contact point (±{zoom:.2g} mm)", fontsize=9)
         else:
             ax.set_xlim(zr[:, 0].min() - 1, zr[:, 0].max() + 1)
             ax.set_ylim(zr[:, 1].min() - 0.5, zr[:, 1].max() + 0.5)
             ax.set_title("loaded flank (working area dotted; not to scale)", fontsize=9)
-    fig.colorbar(pc, ax=axs[0].tolist(), label="FE contact pressure [MPa]", shrink=0.9)
+    fig.colorbar(pc, cax=fig.add_axes([0.915, 0.2, 0.015, 0.7]), label="FE contact pressure [MPa]")
     axs[0, 0].plot([], [], color="white", lw=3, label=f"FE patch (p > {PATCH_FRACTION:g} x peak)")
-    leg = fig.legend(loc="outside lower center", ncol=3, fontsize=8, frameon=True)
+    leg = fig.legend(loc="lower center", ncol=3, fontsize=8, frameon=True)
     leg.get_frame().set_facecolor("0.8")
     fig.suptitle(title or f"Contact pressure, peak {peak:.0f} MPa", fontsize=10)
     return savefig(fig, path, dpi=DPI, tight=False)
@@ -105,7 +106,8 @@ def plot_section(xy: np.ndarray, triangles: np.ndarray, values: np.ndarray, path
     v = np.nan_to_num(np.asarray(values, float))
     tri = mtri.Triangulation(xy[:, 0], xy[:, 1], np.asarray(triangles))
     panels = 2 if zoom and point is not None else 1
-    fig, axs = plt.subplots(1, panels, figsize=(6.6 * panels, 5.6), squeeze=False, layout="constrained")
+    fig, axs = plt.subplots(1, panels, figsize=(6.6 * panels, 5.8), squeeze=False)
+    fig.subplots_adjust(left=0.07 * 2 / panels, right=0.97, bottom=0.17, top=0.9, wspace=0.3)
     cmap = plt.get_cmap("jet").with_extremes(over="magenta")
     vmax = float(vmax) or 1.0
     for k, ax in enumerate(axs[0]):
@@ -116,7 +118,7 @@ def plot_section(xy: np.ndarray, triangles: np.ndarray, values: np.ndarray, path
             top = vmax
         pc = ax.tripcolor(tri, v, shading="gouraud", cmap=cmap, vmin=0.0, vmax=top)
         clipped = float(v.max(initial=0.0)) > top * (1 + 1e-9) and k == 0
-        fig.colorbar(pc, ax=ax, extend="max" if clipped else "neither", shrink=0.8,
+        fig.colorbar(pc, ax=ax, extend="max" if clipped else "neither", shrink=0.8, fraction=0.05, pad=0.03,
                      label=label + (f", clipped at {top:.0f} (max {v.max():.0f})" if clipped else ""))
         ax.set_aspect("equal")
         ax.set_xlabel("x [mm] (in the section)")
@@ -134,21 +136,22 @@ def plot_section(xy: np.ndarray, triangles: np.ndarray, values: np.ndarray, path
         else:
             ax.set_title("both loaded teeth and their fillets", fontsize=9)
     if point is not None:
-        fig.legend(loc="outside lower center", ncol=2, fontsize=8, frameon=True).get_frame().set_facecolor("0.8")
+        fig.legend(loc="lower center", ncol=2, fontsize=8, frameon=True).get_frame().set_facecolor("0.8")
     fig.suptitle(title, fontsize=10)
     return savefig(fig, path, dpi=DPI, tight=False)
 
 
-def plot_root_stress(panels: list, path: Path, title: str = "") -> Path:
+def plot_root_stress(panels: list, path: Path, title: str = "", xlabel: str = "axial position [mm]") -> Path:
     """Stress along fillets: `panels` is a list of (panel title, [Curve(z [mm], stress [MPa], label)])."""
     n = max(1, len(panels))
-    fig, axs = plt.subplots(n, 1, figsize=(9, 3.4 * n), squeeze=False, layout="constrained")
+    fig, axs = plt.subplots(n, 1, figsize=(10, 3.4 * n), squeeze=False)
+    fig.subplots_adjust(left=0.08, right=0.62, bottom=0.16 / n, top=1 - 0.2 / n, hspace=0.5)
     for ax, (name, curves) in zip(axs[:, 0], panels):
         for c in curves:
             ax.plot(c.x, c.y, c.style, color=c.color, lw=1.6, marker=".", ms=4, label=c.label)
         ax.axhline(0.0, color="0.6", lw=0.8)
         ax.set_title(name, fontsize=9)
-        ax.set_xlabel("z [mm] (face width, gear frame)")
+        ax.set_xlabel(xlabel)
         ax.set_ylabel("max. principal stress [MPa]")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.0, 0.5))

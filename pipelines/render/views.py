@@ -144,7 +144,7 @@ def _half_height(grid, direction, up, aspect: float) -> float:
 
 def render_teeth(parts: pv.UnstructuredGrid, flank: pv.UnstructuredGrid, path: Path, *, axis, up, normal, cr: ColourRange,
                  marks=(), field: str = "von_mises", title: str = "von Mises [MPa]", caption: str = "",
-                 show_edges: bool = False, cut=None, size=(1500, 700)) -> Path:
+                 show_edges: bool = False, cut=None, size=(1300, 600)) -> Path:
     """Two lit views (module docstring): `parts` along `axis`, `flank` along -`normal` (camera on +normal).
 
     `cut` [mm]: a point (the contact point) whose transverse plane cuts the axial view: the half

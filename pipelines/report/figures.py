@@ -278,7 +278,11 @@ def section(v: InterfaceView, grid, path: Path, vmax: float, hertz: dict | None 
 
 
 def root_curves(v: InterfaceView, mesh, result) -> list:
-    """Largest principal stress [MPa] at each axial level (gear-frame z [mm]) of the two fillets of both loaded teeth."""
+    """Largest principal stress [MPa] at each axial level of the two fillets of both loaded teeth.
+
+    Axial position [mm]: from the TCA contact point along the slave gear's axis, common to both gears
+    (their own frames may run opposite ways: the planet's is turned over in Part 1).
+    """
     from pipelines.render.maps import Curve
 
     out = []
@@ -289,10 +293,15 @@ def root_curves(v: InterfaceView, mesh, result) -> list:
             if name not in mesh.point_sets:
                 continue
             nodes = mesh.point_sets[name]
-            z = np.round(to_gear(part, mesh.points[nodes])[:, 2], 4)
-            levels, inv = np.unique(z, return_inverse=True)
-            top = np.full(len(levels), -np.inf)
+            # the mesh's axial levels are planes of the gear's own frame; plotted at their mean position
+            # along the slave's axis from the contact point (one coordinate for both gears)
+            _, inv = np.unique(np.round(to_gear(part, mesh.points[nodes])[:, 2], 6), return_inverse=True)
+            n = inv.max() + 1
+            levels = np.bincount(inv, (mesh.points[nodes] - v.point) @ v.axis, n) / np.bincount(inv, None, n)
+            top = np.full(n, -np.inf)
             np.maximum.at(top, inv, result.principal[nodes, 0])
+            order = np.argsort(levels)
+            levels, top = levels[order], top[order]
             which = "loaded flank's side (tension)" if side == loaded else "other side"
             out.append(Curve(levels, top, f"{part.body} tooth {part.centre}: fillet on the {which}", style, color))
     return out
@@ -339,7 +348,7 @@ class Pictures:
 
 
 def design_pictures(summary: dict, artefacts: dict, out: Path, *, top: float | None = None, show_edges: bool = False,
-                    size=(1500, 700)) -> Pictures:
+                    size=(1300, 600)) -> Pictures:
     """All pictures of the module docstring for every interface member, into ``out``.
 
     ``top`` [MPa] fixes the top of the von Mises range (``gearfe compare``: one range for both
@@ -373,7 +382,7 @@ def design_pictures(summary: dict, artefacts: dict, out: Path, *, top: float | N
                                   cut=cut_point(v)[0], size=size).name
         scale = deformation_scale(parts.point_data["displacement"], float(np.linalg.norm(np.ptp(parts.points, axis=0))))
         f["deformed"] = render_deformed(parts, out / f"deformed_{v.stem}.png", axis=v.axis, up=v.up, cut=cut_point(v)[0],
-                                        factor=scale, cr=cr, size=(int(0.66 * size[0]), int(size[1] * 1.0)),
+                                        factor=scale, cr=cr, size=(int(0.7 * size[0]), int(1.1 * size[1])),
                                         caption=f"{head}\nelastic displacements x {scale:.3g} (rigid-body motion removed)").name
         hz = fe_hertz(v, result, force)
         f["flank"] = flank_map(v, mesh, result, out / f"flank_{v.stem}.png", delta, hertz=hz,
@@ -381,7 +390,8 @@ def design_pictures(summary: dict, artefacts: dict, out: Path, *, top: float | N
         f["section"] = section(v, grid, out / f"section_{v.stem}.png", cr.hi, hertz=hz,
                                title=f"{head}: von Mises [MPa] on the transverse section through the contact point").name
         curves = root_curves(v, mesh, result)
-        f["root"] = plot_root_stress([(head, curves)], out / f"root_{v.stem}.png").name
+        f["root"] = plot_root_stress([(head, curves)], out / f"root_{v.stem}.png",
+                                     xlabel=f"axial position from the contact point along the {v.slave.body} axis [mm]").name
         files[v.stem] = f
         a, b = tca_semi_axes(v, delta)
         patch = patch_extent(v, mesh, result.contact_pressure)
