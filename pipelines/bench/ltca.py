@@ -52,7 +52,6 @@ def main(argv=None) -> int:
     t0, c0 = time.perf_counter(), time.process_time()
     rows, _, timing = solve_positions(model, phis, (T,))
     t_pos, cpu_pos = time.perf_counter() - t0, time.process_time() - c0
-    t0 = time.perf_counter()
     _, _, timing2 = solve_positions(model, phis[:20], (T, 0.5 * T))
     print(f"build {model.build_s:.1f} s (cpu {build_cpu:.1f} s), {len(phis)} positions {t_pos:.2f} s (cpu {cpu_pos:.2f} s)")
     idx = check_indices(rows, args.checks)

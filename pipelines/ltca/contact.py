@@ -43,6 +43,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
 
 from tca.contact import PlacedFlank
 from tca.ellipse import contact_ellipse
@@ -186,8 +187,7 @@ def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: fl
 
 
 def _stack(locs, oks, m):
-    import scipy.sparse as sp
-
+    """Sparse weights (S, m) of the kept slices of all pairs over one gear's flank nodes."""
     return sp.vstack([loc.matrix(m)[ok] for loc, ok in zip(locs, oks)], format="csr")
 
 
