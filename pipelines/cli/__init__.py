@@ -23,6 +23,7 @@ SUBCOMMANDS = {
     "stress": "pipelines.cli.stress",
     "run": "pipelines.cli.run",
     "compare": "pipelines.cli.compare",
+    "crosscheck": "pipelines.cli.crosscheck",
 }
 
 

@@ -24,6 +24,7 @@ from pipelines.cli.outdir import staged_output
 from pipelines.report.run import run_pipeline
 from pipelines.cases.schema import Table
 from pipelines.stress.case import StressCase, read_stress_case
+from pipelines.stress.crosscheck import write_inp_job
 
 __all__ = ["add_args", "handle", "read_with_overrides", "SHOWN"]
 
@@ -42,6 +43,8 @@ def add_overrides(p: argparse.ArgumentParser) -> None:
 def add_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("case", help="stress case file (TOML), e.g. pipelines/cases/stress_part1_new.toml")
     p.add_argument("--out", required=True, help="output folder")
+    p.add_argument("--inp", action="store_true",
+                   help="also write DIR/job.inp, the CalculiX/ABAQUS job of the same scene (docs/calculix.md)")
     add_overrides(p)
 
 
@@ -73,7 +76,10 @@ def handle(args) -> int:
     t0 = time.perf_counter()
     case = read_with_overrides(args.case, args)  # bad input fails here, before any output
     with staged_output(args.out) as tmp:
-        s = run_pipeline(case, Path(tmp), progress=progress)
+        art: dict = {}
+        s = run_pipeline(case, Path(tmp), progress=progress, artefacts=art)
+        if getattr(args, "inp", False):
+            write_inp_job(Path(tmp), art["scene"], art["mesh"], art["result"], s["solve_s"])
         s = {"kind": "run", "case": str(args.case), **s, "elapsed_s": time.perf_counter() - t0}
         write_summary(s, Path(tmp) / "summary.json")
     width = max(len(k) for k in SHOWN)
