@@ -27,6 +27,7 @@ AREAS = {
     "part2": ("pipelines.bench.part2", {}),
     "part3": ("pipelines.bench.part3", {}),
     "stress": ("pipelines.bench.stress", {}),
+    "peer": ("pipelines.bench.peer", {}),
 }
 
 
