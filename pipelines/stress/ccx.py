@@ -5,8 +5,8 @@ unchanged; :func:`run_ccx` runs it. Conventions (see also ``docs/calculix.md``):
 
 * Units mm, N, MPa (as gearfe): E [MPa], torque [N mm], penalty slope K [MPa/mm].
 * Node ids 1..n are the mesh nodes in gearfe's order (node i+1 = mesh node i), then one
-  reference node per rigid body (node set ``<BODY>_REF``, as ``mesher.write_inp``), then one
-  rotation node per rigid body (``<BODY>_ROT``). Element ids 1..m in gearfe's order. Ids are
+  reference node per reference point of the mesh (node set ``<BODY>_REF``, as ``mesher.write_inp``),
+  then one rotation node per rigid body (``<BODY>_ROT``). Element ids 1..m in gearfe's order. Ids are
   compact because CalculiX sizes its arrays by the largest id.
 * Sets: ABAQUS names of the mesh's sets (``planet/tooth0/flank_neg`` -> ``PLANET_TOOTH0_FLANK_NEG``,
   :func:`mesher.export.abaqus_name`); an element set per body; surfaces of type ELEMENT per face set.
@@ -36,7 +36,8 @@ unchanged; :func:`run_ccx` runs it. Conventions (see also ``docs/calculix.md``):
   slow: MEASURED.md), small displacements (no NLGEOM, as gearfe).
 * Output: ``*NODE FILE`` U, RF; ``*EL FILE`` S (nodal, extrapolated and averaged by ccx);
   ``*CONTACT FILE`` CDIS, CSTR; ``*NODE PRINT`` totals of RF on the fixed rims and on the reference
-  and rotation nodes into ``job.dat``.
+  and rotation nodes, and ``*CONTACT PRINT`` CF of every pair (total and normal contact force on its
+  slave surface) into ``job.dat``.
 """
 
 from __future__ import annotations
@@ -196,7 +197,7 @@ def write_job(mesh: HexMesh, model: FEModel, path: str | Path, penalty_scale: fl
             if s.reference not in refs:
                 raise InputError(f"bodies[{b.name!r}].supports.reference", s.reference, "a reference point of the mesh")
             i = refs.index(s.reference)
-            ref_node, rot_node = n + 1 + i, n + 1 + len(refs) + i
+            ref_node, rot_node = n + 1 + i, n + 1 + len(refs) + len(rigid)
             rp = mesh.reference_points[s.reference]
             R = axis_frame(rp.axis)
             held = [j for j, d in enumerate(RIGID_DOFS) if d not in s.free]
@@ -219,8 +220,8 @@ def write_job(mesh: HexMesh, model: FEModel, path: str | Path, penalty_scale: fl
             rigid.append(CcxRigid(b.name, ref_node, rot_node, nset, ref_set, abaqus_name(s.reference) + "_ROT"))
     # rotation nodes (their coordinates are not used by CalculiX): after the reference nodes
     out.append("*NODE")
-    for i, r in enumerate(refs):
-        out.append(f"{n + 1 + len(refs) + i}, " + ", ".join(_num(x) for x in mesh.reference_points[r].point))
+    for r in rigid:
+        out.append(f"{r.rot_node}, " + ", ".join(_num(x) for x in mesh.reference_points[refs[r.ref_node - n - 1]].point))
     for r in rigid:
         out += [f"*NSET, NSET={r.rot_set}", f"{r.rot_node}"]
     for (E, nu), mname in mats.items():
@@ -259,6 +260,8 @@ def write_job(mesh: HexMesh, model: FEModel, path: str | Path, penalty_scale: fl
         out += [f"*NODE PRINT, NSET={nset}, TOTALS=ONLY", "RF"]
     for r in rigid:
         out += [f"*NODE PRINT, NSET={r.ref_set}", "RF", f"*NODE PRINT, NSET={r.rot_set}", "RF"]
+    for p in pairs:  # total force, normal force and area of each pair's slave surface
+        out += [f"*CONTACT PRINT, SLAVE={p.slave}, MASTER={p.master}, TOTALS=ONLY", "CF"]
     out.append("*END STEP")
     with open(path, "a") as fh:
         fh.write("\n".join(out) + "\n")
@@ -286,7 +289,8 @@ class CcxRun:
 def run_ccx(job: str | Path, threads: int = 1, timeout: float = 3600.0) -> CcxRun:
     """Run ``ccx -i <job>`` in the job's folder (log in ``<job>.log``); raise GearfeError when it fails.
 
-    The peak memory is the child's own maximum resident set (``wait4``), not the Python process's.
+    The peak memory is the ccx process's own high-water mark of resident memory (``/proc/<pid>/status``
+    VmHWM, polled every 0.05 s), not the Python process's.
     """
     exe = ccx_path()
     job = Path(job)
@@ -295,10 +299,12 @@ def run_ccx(job: str | Path, threads: int = 1, timeout: float = 3600.0) -> CcxRu
     t0 = time.perf_counter()
     with open(logfile, "w") as fh:
         proc = subprocess.Popen([exe, "-i", job.stem], cwd=job.parent, stdout=fh, stderr=subprocess.STDOUT, env=env)
+        peak_kb = 0
         while True:
             pid, status, ru = os.wait4(proc.pid, os.WNOHANG)
             if pid:
                 break
+            peak_kb = max(peak_kb, _hwm_kb(proc.pid))
             if time.perf_counter() - t0 > timeout:
                 proc.kill()
                 os.wait4(proc.pid, 0)
@@ -312,4 +318,18 @@ def run_ccx(job: str | Path, threads: int = 1, timeout: float = 3600.0) -> CcxRu
     if proc.returncode != 0 or "Job finished" not in log:
         errs = " | ".join(line.strip() for line in log.splitlines() if "ERROR" in line.upper())[:500]
         raise GearfeError(f"ccx: {job.name} failed (exit status {proc.returncode}): {errs or tail[-300:]}")
-    return CcxRun(wall, ru.ru_maxrss / 1024.0, proc.returncode, tail)
+    return CcxRun(wall, peak_kb / 1024.0, proc.returncode, tail)
+
+
+def _hwm_kb(pid: int) -> int:
+    """Peak resident memory (VmHWM) of a running process [kB]; 0 once it has gone.
+
+    Polled because the child's rusage counts the parent's pages it shared before exec."""
+    try:
+        with open(f"/proc/{pid}/status") as fh:
+            for line in fh:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1])
+    except (OSError, ValueError):
+        pass
+    return 0

@@ -10,8 +10,9 @@ mesh nodes (CalculiX node i+1 = mesh node i, :mod:`pipelines.stress.ccx`):
 * reaction torque [N m]: moment of those reactions about the fixed body's axis (the reference of
   the torque balance, :mod:`pipelines.stress.results`);
 * force per tooth pair [N] and load share: gearfe's pair forces (sum of lambda); CalculiX's the
-  contact pressure CPRESS at the slave nodes times their tributary areas (integral of the nodal
-  shape function over the slave faces), summed per pair; shares = pair / total;
+  normal force of the pair's ``*CONTACT PRINT`` CF statistics (its nodal CPRESS extrapolated from
+  the integration points does not integrate to the contact force: 3x on the small crowned pair);
+  shares = pair / total;
 * maximum von Mises per body, fillet maximum principal stress (all fillet sets), both from the
   nodal stress tensor (gearfe: Gauss-point stresses extrapolated and averaged; CalculiX: its own
   extrapolation and averaging), von Mises sqrt(3 J2), principal stresses the eigenvalues;
@@ -36,10 +37,11 @@ import numpy as np
 
 from fem.assembly import face_node_areas
 from fem.constraints import set_nodes
+from mesher.export import abaqus_name
 from tca.errors import GearfeError, InputError
 
 from pipelines.stress.ccx import CcxJob, run_ccx, write_job
-from pipelines.stress.frd import read_frd
+from pipelines.stress.frd import read_dat_contact, read_frd
 
 __all__ = ["Quantities", "quantities", "von_mises", "principal", "write_reference", "write_inp_job", "crosscheck",
            "TARGETS", "table"]
@@ -119,7 +121,9 @@ def write_reference(out: Path, scene, mesh, result, solve_s: float) -> Quantitie
     ref = {"points": mesh.points, "node_body": body_of_node, "bodies": np.array(mesh.bodies), "fixed_nodes": fixed,
            "reaction_point": np.asarray(scene.reaction[1], float), "reaction_axis": np.asarray(scene.reaction[2], float),
            "fillet_nodes": np.unique(np.concatenate([set_nodes(mesh, s, "fillet") for s in model.fillet_sets])),
-           "pair_names": np.array([c.name for c in model.contacts])}
+           "pair_names": np.array([c.name for c in model.contacts]),
+           "pair_slave": np.array([abaqus_name(c.slave) for c in model.contacts]),
+           "pair_master": np.array([abaqus_name(c.master) for c in model.contacts])}
     for c in model.contacts:
         ref[f"pair/{c.name}"] = mesh.face_nodes(c.slave)
     np.savez_compressed(out / "crosscheck_ref.npz", **ref)
@@ -148,7 +152,8 @@ def load_reference(folder: Path) -> dict:
         raise InputError("DIR", str(folder), "a folder written by 'gearfe stress CASE --out DIR --inp' (job.inp, crosscheck_ref.npz)")
     with np.load(f, allow_pickle=False) as z:
         ref = {k: z[k] for k in z.files}
-    ref["pair_names"] = [str(x) for x in ref["pair_names"]]
+    for k in ("pair_names", "pair_slave", "pair_master"):
+        ref[k] = [str(x) for x in ref[k]]
     ref["bodies"] = [str(x) for x in ref["bodies"]]
     return ref
 
@@ -168,8 +173,13 @@ def crosscheck(folder: Path, timeout: float = 3600.0) -> tuple[Quantities, Quant
     if missing:
         raise GearfeError(f"ccx: job.frd has no {', '.join(missing)} block(s)")
     n = len(ref["points"])
+    cf = read_dat_contact(work / "job.dat")
+    pair_force = {}
+    for name, slave, master in zip(ref["pair_names"], ref["pair_slave"], ref["pair_master"]):
+        # a pair without any contact element in the last iteration is not printed: no force
+        pair_force[name] = max(0.0, cf[(slave, master)]["normal_force"]) if (slave, master) in cf else 0.0
     cq = quantities(ref, blocks["DISP"].field(n), blocks["STRESS"].field(n), blocks["FORC"].field(n),
-                    blocks["CONTACT"].field(n)[:, 3], "calculix", run.wall_s, run.peak_mb)
+                    blocks["CONTACT"].field(n)[:, 3], "calculix", run.wall_s, run.peak_mb, pair_force=pair_force)
     return gq, cq
 
 

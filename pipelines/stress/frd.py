@@ -23,7 +23,7 @@ import numpy as np
 
 from tca.errors import GearfeError
 
-__all__ = ["FrdBlock", "read_frd", "read_dat_totals"]
+__all__ = ["FrdBlock", "read_frd", "read_dat_totals", "read_dat_contact"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -130,4 +130,33 @@ def read_dat_totals(path: str | Path) -> dict[str, np.ndarray]:
             i = j
         else:
             i += 1
+    return out
+
+
+def read_dat_contact(path: str | Path) -> dict[tuple[str, str], dict]:
+    """From a ``.dat`` file: the last ``*CONTACT PRINT`` CF statistics of each (slave, master) pair.
+
+    Returns per pair ``force`` (total force on the slave surface [N], 3), ``normal_force`` (compressive
+    normal force [N], > 0 in contact; CalculiX prints it with + = tension) and ``area`` [mm^2].
+    """
+    text = Path(path).read_text().splitlines()
+    out: dict[tuple[str, str], dict] = {}
+    for i, line in enumerate(text):
+        s = line.strip()
+        if not s.startswith("statistics for slave set"):
+            continue
+        words = s.replace(",", " ").split()
+        slave, master = words[4], words[7]
+
+        def numbers_after(header: str, start: int) -> tuple[list[float], int]:
+            for j in range(start, min(start + 40, len(text))):
+                if text[j].strip().startswith(header):
+                    return [float(x) for x in text[j + 2].split()], j + 2
+            raise GearfeError(f"dat line {start}: no {header!r} after the statistics of {slave}/{master}")
+
+        force, j = numbers_after("total surface force", i)
+        normal, _ = numbers_after("area,  normal force", j)
+        if len(force) != 6 or len(normal) != 3:
+            raise GearfeError(f"dat line {i + 1}: unexpected contact statistics of {slave}/{master}")
+        out[(slave, master)] = {"force": np.array(force[:3]), "normal_force": -normal[1], "area": normal[0]}
     return out
