@@ -142,6 +142,7 @@ def test_reducer_table_2_1(reducer):
     assert scan.delta_opt == pytest.approx(PI17 + 0.0518, abs=0.01)
     assert scan.te_opt_exact == pytest.approx(scan.te_opt, abs=1e-3 * ARCSEC)  # spline scan vs exact solves
     assert scan.te_opt < 0.45 * scan.te_single
+    assert scan.te_opt / ARCSEC == pytest.approx(8.98, abs=0.02)  # regression pin (report about 6: strict xfail below)
     best = run_face_train(FaceTrain(*_parts(train), delta=scan.delta_opt, use="reducer"), 1, 60, stages=(ra, rb))
     assert best.branches_per_cycle == 2
     assert min(best.branch_fractions) > 0.4  # nearly equal branches at the optimum
