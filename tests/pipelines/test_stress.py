@@ -122,7 +122,7 @@ def test_pair_contact_force_is_torque_over_tca_arm(pair_run):
     # the planet's equilibrium fixes sum(f arm) = T; the FE force spreads over the contact ellipse where
     # the arm of the crowned flank differs slightly from the TCA point's: 0.1 %. Measured 2.1e-4.
     assert s["contact_force_n"] == pytest.approx(load, rel=1e-3)
-    assert m["force_n"] == s["contact_force_n"]
+    assert m["force_n"] == s["contact_force_n"]  # bookkeeping identity, beside the closed-form arm check above
 
 
 def test_pair_vtu_has_the_fields(pair_run):
