@@ -80,6 +80,7 @@ def handle(args) -> int:
         s = run_pipeline(case, Path(tmp), progress=progress, artefacts=art)
         if getattr(args, "inp", False):
             write_inp_job(Path(tmp), art["scene"], art["mesh"], art["result"], s["solve_s"])
+            s = {**s, "files": [*s["files"], "job.inp", "crosscheck_ref.npz", "crosscheck_gearfe.json"]}
         s = {"kind": "run", "case": str(args.case), **s, "elapsed_s": time.perf_counter() - t0}
         write_summary(s, Path(tmp) / "summary.json")
     width = max(len(k) for k in SHOWN)
