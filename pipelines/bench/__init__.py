@@ -30,6 +30,7 @@ AREAS = {
     "reliability": ("pipelines.bench.reliability", ONE_CORE),
     "standard": ("pipelines.bench.standard", {}),
     "ltca": ("pipelines.bench.ltca", {}),
+    "peer": ("pipelines.bench.peer", {}),
 }
 
 

@@ -51,6 +51,7 @@ SUBCOMMANDS = {
     "run": "pipelines.cli.run",
     "compare": "pipelines.cli.compare",
     "ltca": "pipelines.cli.ltca",
+    "crosscheck": "pipelines.cli.crosscheck",
 }
 
 

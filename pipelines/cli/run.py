@@ -29,6 +29,7 @@ from pipelines.report.html import run_html
 from pipelines.report.run import run_pipeline
 from pipelines.cases.schema import Table
 from pipelines.stress.case import StressCase, read_stress_case
+from pipelines.stress.crosscheck import write_inp_job
 
 __all__ = ["add_args", "handle", "read_with_overrides", "SHOWN"]
 
@@ -48,6 +49,8 @@ def add_overrides(p: argparse.ArgumentParser) -> None:
 def add_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("case", help="stress case file (TOML), e.g. pipelines/cases/stress_part1_new.toml")
     p.add_argument("--out", required=True, help="output folder")
+    p.add_argument("--inp", action="store_true",
+                   help="also write DIR/job.inp, the CalculiX/ABAQUS job of the same scene (docs/calculix.md)")
     add_overrides(p)
     p.add_argument("--edges", action="store_true", help="draw the element edges on the teeth views")
 
@@ -85,7 +88,11 @@ def handle(args) -> int:
     t0 = time.perf_counter()
     case = read_with_overrides(args.case, args)  # bad input fails here, before any output
     with staged_output(args.out) as tmp:
-        s = run_pipeline(case, Path(tmp), progress=progress, show_edges=args.edges)
+        art: dict = {}
+        s = run_pipeline(case, Path(tmp), progress=progress, artefacts=art, show_edges=args.edges)
+        if getattr(args, "inp", False):
+            write_inp_job(Path(tmp), art["scene"], art["mesh"], art["result"], s["solve_s"])
+            s = {**s, "files": [*s["files"], "job.inp", "crosscheck_ref.npz", "crosscheck_gearfe.json"]}
         s = {"kind": "run", "case": str(args.case), **s, "elapsed_s": time.perf_counter() - t0}
         s["files"] = [*s["files"], "report.html"]
         write_summary(s, Path(tmp) / "summary.json")

@@ -5,7 +5,9 @@ three-tooth models, solves the penalty contact problem (C3D8I-like elements, Fig
 conditions) and writes ``DIR/result.vtu`` (displacements, stresses, von Mises, principal stresses,
 contact pressure and gap, reactions) and ``DIR/summary.json`` (``max_von_mises_mpa``,
 ``max_contact_pressure_mpa``, ``contact_force_n``, ``max_fillet_stress_mpa``, ``torque_balance_error``,
-``dofs``, ``solve_s``, ``load_share`` per interface, member and tooth, edge contact, ...). Progress
+``dofs``, ``solve_s``, ``load_share`` per interface, member and tooth, edge contact, ...); with ``--inp``
+also ``DIR/job.inp``, the complete CalculiX job of the same scene (``docs/calculix.md``), for
+``gearfe crosscheck DIR``. Progress
 lines go to stderr. Nothing is written when the case is invalid or a solve fails (exit status 2).
 See ``pipelines/stress.py`` for the case keys and ``pipelines/cases/stress_*.toml`` for examples.
 """
@@ -21,6 +23,7 @@ from pathlib import Path
 from pipelines.cases.reader import load_case
 from pipelines.cli.outdir import staged_output
 from pipelines.stress.case import read_stress_case
+from pipelines.stress.crosscheck import write_inp_job
 from pipelines.stress.run import run_stress
 
 __all__ = ["add_args", "handle", "SHOWN"]
@@ -33,6 +36,9 @@ SHOWN = ("max_von_mises_mpa", "max_contact_pressure_mpa", "contact_force_n", "ma
 def add_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("case", help="stress case file (TOML), e.g. pipelines/cases/stress_part1_new.toml")
     p.add_argument("--out", required=True, help="output folder")
+    p.add_argument("--inp", action="store_true",
+                   help="also write DIR/job.inp, the CalculiX/ABAQUS job of the same scene (docs/calculix.md), "
+                        "and the reference files of 'gearfe crosscheck DIR'")
 
 
 def _progress(msg: str) -> None:
@@ -43,8 +49,13 @@ def handle(args) -> int:
     t0 = time.perf_counter()
     case = read_stress_case(load_case(args.case))  # bad input fails here, before any output
     with staged_output(args.out) as tmp:
-        summary = run_stress(case, Path(tmp), progress=_progress)
-        summary = {"kind": "stress", "case": str(args.case), **summary, "files": ["result.vtu", "summary.json"],
+        art: dict = {}
+        summary = run_stress(case, Path(tmp), progress=_progress, artefacts=art)
+        files = ["result.vtu", "summary.json"]
+        if args.inp:
+            write_inp_job(Path(tmp), art["scene"], art["mesh"], art["result"], summary["solve_s"])
+            files += ["job.inp", "crosscheck_ref.npz", "crosscheck_gearfe.json"]
+        summary = {"kind": "stress", "case": str(args.case), **summary, "files": files,
                    "elapsed_s": time.perf_counter() - t0}
         (Path(tmp) / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
     width = max(len(k) for k in SHOWN)

@@ -57,3 +57,20 @@ def test_bad_sweep_value_exits_2(tmp_path, capsys):
     sw = setup(tmp_path, SWEEP.replace("values = [0.004]", "values = [-1.0]"))
     assert main(["sweep", str(sw), "--out", str(tmp_path / "o")]) == 2
     assert "parabola_drive_per_mm" in capsys.readouterr().err
+
+
+def test_sweep_with_a_failing_point_keeps_the_others(tmp_path, capsys):
+    # a centre distance 5 mm too large takes the teeth out of mesh (contact ratio < 1: no contact), which
+    # only the TCA finds: the point fails at run time, the other point is computed, the sweep exits 1
+    sw = setup(tmp_path, SWEEP.replace('key = "misalignment.d_gamma_arcmin"\nvalues = [0.0, 3.0]',
+                                       'key = "misalignment.d_center_um"\nvalues = [0.0, 5000.0]'))
+    assert "d_center_um" in sw.read_text()
+    out = tmp_path / "out"
+    assert main(["sweep", str(sw), "--out", str(out), "--workers", "1"]) == 1
+    rows = list(csv.DictReader(open(out / "results.csv")))
+    assert [r["misalignment.d_center_um"] for r in rows] == ["0.0", "5000.0"]
+    assert rows[0]["status"] == "ok" and float(rows[0]["te_peak_to_peak_arcsec"]) > 0
+    assert rows[1]["status"].startswith("error:") and "no contact" in rows[1]["status"]
+    # only the finished point has a case folder (the failed one leaves no half-written files)
+    assert [p.name for p in (out / "cases").iterdir()] == [rows[0]["id"]]
+    assert rows[1]["id"] in capsys.readouterr().err

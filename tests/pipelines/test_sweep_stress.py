@@ -98,6 +98,8 @@ def test_load_share_and_loaded_te(swept):
         assert sum(sh.values()) == pytest.approx(1.0, abs=1e-9)  # shares of the interface's total normal force
         rot = float(r["elastic_rotation_arcsec"])
         assert rot < 0  # the planet lags under the resisting torque
+        # loaded TE = unloaded TE + rotation is the definition (an identity of the CSV), kept only beside the
+        # checks against the raw FE rotation vector and the TCA gaps below
         assert float(r["te_loaded_arcsec"]) == pytest.approx(float(r["te_unloaded_arcsec"]) + rot, abs=1e-9)
         assert float(r["te_loaded_arcsec"]) < float(r["te_unloaded_arcsec"])
         # the sign convention against the raw FE rotation vector: the planet's axis in S_f is -z_f (tilted by

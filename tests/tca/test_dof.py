@@ -49,6 +49,12 @@ def test_count_is_consistent(n, sun, car, ring):
             TrainConstraints(n, sun, car, ring)
         return
     d = count_dof(TrainConstraints(n, sun, car, ring))
+    # section 3.2 (Eqs. 3.1-3.3): 3 planar DOF per member (sun, carrier, ring: 9, and each planet), and the
+    # constraints row by row: (i) sun axis 2, (ii) sun angle 1, (iii) carrier axis 2, (iv) ring axis and angle
+    # 3 (its angle only, 1, with a floating ring axis: Note 2), (v)+(vi) 4 per planet
+    assert d.dof == 9 + 3 * n
+    assert d.constraints == (0 if sun else 2) + 1 + (0 if car else 2) + (1 if ring else 3) + 4 * n
+    # identities of the count, kept beside the closed forms above
     assert d.dof - d.constraints == d.isostatic_planets - n  # one planet adds 3 DOF and 4 constraints
     assert d.constraints == sum(v for _, v in d.rows)
 

@@ -173,10 +173,11 @@ def test_double_crowned_planets_give_an_almost_constant_lag(crowned):
     assert r.carrier_te_peak_to_peak_arcsec < 1.0
     assert r.all_planets_in_contact
     assert elapsed < 30
-    # The sun moves by a few um (the report says "about 1 um"; here the first harmonics of the sun-side and
-    # ring-side crowning errors of each planet add, see the bench report): between 1 and 10 um.
+    # The sun moves by 6.29 um: regression pin (the report says "about 1 um", asserted under a strict xfail in
+    # test_double_crowned_sun_motion_is_the_reports_1_um; here the first harmonics of the sun-side and ring-side
+    # crowning errors of each planet add, see the bench report and docs/deviations.md).
     mag = np.linalg.norm(r.sun_center_um, axis=1)
-    assert 1.0 < mag.max() < 10.0
+    assert mag.max() == pytest.approx(6.29, abs=0.02)
     single = run_isostatic_tca(PlanetaryTrain(SUN, (CROWNED,), RING, TrainConstraints(1)),
                                phi1_grid(r.train, 200, sun_revolutions=0.05))
     assert single.carrier_te_peak_to_peak_arcsec > 5 * r.carrier_te_peak_to_peak_arcsec
@@ -224,3 +225,11 @@ def test_longitudinal_crowning_does_not_change_the_planar_results():
     b = run_isostatic_tca(train(dataclasses.replace(CROWNED, plunge=None)), phi)
     assert np.abs(a.te_arcsec - b.te_arcsec).max() < 1e-8
     assert np.abs(a.sun_center_um - b.sun_center_um).max() < 1e-8
+
+
+@pytest.mark.xfail(strict=True, reason="measured 6.3 um: the first harmonics of the sun-side and ring-side crowning "
+                   "errors of each planet add (report: about 1 um; docs/deviations.md)")
+def test_double_crowned_sun_motion_is_the_reports_1_um(crowned):
+    # Report, Part 3 (Fig. 3.6 discussion): the sun centre moves by "about 1 um" with double-crowned planets
+    r, _ = crowned
+    assert np.linalg.norm(r.sun_center_um, axis=1).max() == pytest.approx(1.0, abs=0.5)

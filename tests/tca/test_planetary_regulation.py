@@ -28,17 +28,17 @@ def example_1_1(train):
 
 
 def test_table_1_2_axial_displacements(example_1_1):
-    # Delta Z^(1) (Eq. 1.16) to 0.01 mm; Delta Z^(2) from TCA within 5 % of the report's -4.6, 4.6, -1.15, 1.15
-    # (issue 3). Our TCA balances the maxima at Delta Z^(2) = Delta Z^(1) to better than 0.5 %: the sensitivities
-    # of the TE maximum to Delta E_x (2/r3) and to Delta Z ((tan b1 - tan b3)/r3) are first-order exact here,
-    # so the report's 3.5 % larger values are not reproduced (see test_sensitivities_are_first_order).
+    # Delta Z^(1) against the report's Table 1.2 (Eq. 1.16) to 0.01 mm. Our TCA balances the maxima at
+    # Delta Z^(2) = Delta Z^(1) to better than 0.5 % (closed form: the sensitivities of the TE maximum to
+    # Delta E_x (2/r3) and to Delta Z ((tan b1 - tan b3)/r3) are first-order exact here, see
+    # test_sensitivities_are_first_order), so the report's 3.5 % larger Delta Z^(2) is not reproduced:
+    # test_table_1_2_delta_z2_is_the_reports asserts the report's value under a strict xfail.
     for (ra, rb), (dex, dz1, dz2) in zip(example_1_1.members, TABLE_1_2):
         assert ra.dz1 == pytest.approx(dz1, abs=0.01)
         assert rb is ra  # no shaft-angle error: member b is the mirror image, same Delta Z
         if dex == 0:
             assert ra.dz2 == 0.0
             continue
-        assert ra.dz2 == pytest.approx(dz2, rel=0.05)
         assert ra.dz2 == pytest.approx(ra.dz1, rel=0.005)
 
 
@@ -109,3 +109,12 @@ def test_regulation_failure_names_the_member(train):
     # two TCA evaluations allowed, a target 50 arcsec away cannot be met: ConvergenceError names the member
     with pytest.raises(ConvergenceError, match="shaft 2 member a"):
         regulate_member(train, 1, "a", ShaftErrors(d_ex=0.02), 50 * ARCSEC, OPTS, maxiter=2)
+
+
+@pytest.mark.xfail(strict=True, reason="measured Delta Z(2) 3.4 % below the report's 4.6 and 1.15 mm (equal to Delta Z(1) "
+                   "to 0.5 %: first-order exact sensitivities here; docs/deviations.md)")
+def test_table_1_2_delta_z2_is_the_reports(example_1_1):
+    # Report Table 1.2: Delta Z^(2) = -4.6, 4.6, -1.15, 1.15 mm (given to 2-3 digits: 1 % tolerance)
+    for (ra, _), (dex, _, dz2) in zip(example_1_1.members, TABLE_1_2):
+        if dex:
+            assert ra.dz2 == pytest.approx(dz2, rel=0.01)
