@@ -242,12 +242,12 @@ def flank_map(v: InterfaceView, mesh, result, path: Path, delta: float, hertz: d
             e = flank_zr(v.slave, ellipse_outline(v, a, b))
             curves.append(Curve(e[:, 0], e[:, 1], f"TCA ellipse (δ = {delta * 1e3:g} µm): {2 * a:.2f} x {2 * b:.2f} mm",
                                 "--", "k"))
-        e = flank_zr(v.slave, ellipse_outline(v, hz["a_mm"], hz["b_mm"]))
-        curves.append(Curve(e[:, 0], e[:, 1], f"Hertz ellipse (P = {hz['load_n']:.0f} N): {2 * hz['a_mm']:.2f} x "
-                            f"{2 * hz['b_mm']:.2f} mm", "-", "m"))
+        e = flank_zr(v.slave, ellipse_outline(v, hz.a, hz.b))
+        curves.append(Curve(e[:, 0], e[:, 1], f"Hertz ellipse (P = {hz.load:.0f} N): {2 * hz.a:.2f} x "
+                            f"{2 * hz.b:.2f} mm", "-", "m"))
     ar = v.slave.gear.area(1 if _side_name(v.slave, v.interface) == "pos" else -1)
     pt = flank_zr(v.slave, v.point[None, :])[0]
-    zoom = min(max(3.0 * hz["b_mm"], 1.2 * hz["a_mm"], 1.0), 0.3 * (ar.z_max - ar.z_min))
+    zoom = min(max(3.0 * hz.b, 1.2 * hz.a, 1.0), 0.3 * (ar.z_max - ar.z_min))
     if not surface_contact(v):
         title = (title + " (TCA: " if title else "(TCA: ") + f"{ContactKind.names.get(int(v.interface.contact.kind), '?')} contact, no ellipse)"
     return plot_flank_pressure(zr, tri, np.nan_to_num(result.contact_pressure[nodes]), path, curves=curves, point=pt,
@@ -268,7 +268,7 @@ def section(v: InterfaceView, grid, path: Path, vmax: float, hertz: dict | None 
     xy = np.stack([x @ ex, x @ v.up], -1)
     down3 = -v.view - (-v.view @ v.axis) * v.axis
     down = np.array([_unit(down3) @ ex, _unit(down3) @ v.up])
-    b = (hertz or v.interface.hertz)["b_mm"]
+    b = (hertz or v.interface.hertz).b
     zoom = max(6.0 * b, 1.0) if surface_contact(v) else 1.5
     if not surface_contact(v):
         b = None
@@ -313,7 +313,7 @@ def loaded_pair_force(v: InterfaceView, summary: dict) -> float:
     return float(sum(t["force_n"] for k, t in teeth.items() if k.startswith(f"{v.member}/") and t["offset"] == 0))
 
 
-def fe_hertz(v: InterfaceView, result, force: float) -> dict:
+def fe_hertz(v: InterfaceView, result, force: float) -> "HertzContact":
     """Hertz contact (pipelines.stress.sizing.hertz_contact) under the FE force of the loaded pair [N]."""
     from pipelines.stress.sizing import hertz_contact
 
@@ -399,10 +399,10 @@ def design_pictures(summary: dict, artefacts: dict, out: Path, *, top: float | N
         records[v.stem] = {
             "interface": v.name, "member": v.member, "load_share": share, "loaded_pair_force_n": force,
             "tca_kind": ContactKind.names.get(int(v.interface.contact.kind), str(v.interface.contact.kind)),
-            "fe_peak_pressure_mpa": patch["peak_mpa"], "hertz_p0_mpa": float(hz["p0_mpa"]) if ok else None,
-            "fe_patch_length_mm": patch["length_mm"], "hertz_length_mm": 2 * float(hz["a_mm"]) if ok else None,
+            "fe_peak_pressure_mpa": patch["peak_mpa"], "hertz_p0_mpa": float(hz.p0) if ok else None,
+            "fe_patch_length_mm": patch["length_mm"], "hertz_length_mm": 2 * float(hz.a) if ok else None,
             "tca_ellipse_length_mm": 2 * a if ok else None, "fe_patch_width_mm": patch["width_mm"],
-            "hertz_width_mm": 2 * float(hz["b_mm"]) if ok else None, "tca_ellipse_width_mm": 2 * b if ok else None,
+            "hertz_width_mm": 2 * float(hz.b) if ok else None, "tca_ellipse_width_mm": 2 * b if ok else None,
             "fe_patch_centre_offset_mm": patch["offset_mm"],
             "root_stress_mpa": {c.label: float(np.max(c.y)) for c in curves},
             "deformation_scale": scale,

@@ -57,12 +57,12 @@ def test_crossed_cylinders_against_hertz(R1, R2, theta_deg):
     assert abs(diff) < 1e-10
     # semi-axes and p0 against Hertz's potential integrals
     h = hertz_contact(tuple(lam), P, E, NU, length=100.0)
-    a, b = h["a_mm"], h["b_mm"]
-    assert not h["line"] and a > b
+    a, b = h.a, h.b
+    assert not h.line and a > b
     Es = E / (2 * (1 - NU**2))
     c = 3 * P / (4 * math.pi * Es)
     IA = quad(lambda w: 1 / math.sqrt((a * a + w) ** 3 * (b * b + w) * w), 0, np.inf, limit=200)[0]
     IB = quad(lambda w: 1 / math.sqrt((a * a + w) * (b * b + w) ** 3 * w), 0, np.inf, limit=200)[0]
     assert c * IA == pytest.approx(A, rel=1e-6)
     assert c * IB == pytest.approx(B, rel=1e-6)
-    assert h["p0_mpa"] == pytest.approx(3 * P / (2 * math.pi * a * b), rel=1e-12)
+    assert h.p0 == pytest.approx(3 * P / (2 * math.pi * a * b), rel=1e-12)
