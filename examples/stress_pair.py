@@ -17,10 +17,10 @@ from pipelines.cases import CASES_DIR, load_case
 from pipelines.stress import read_stress_case, run_stress
 
 
-def main(out: Path, refine: float = 0.35) -> dict:
+def main(out: Path, refine: float = 0.35) -> dict:  # the summary
     case = read_stress_case(load_case(CASES_DIR / "stress_pair_small.toml"))
     case = replace(case, mesh=replace(case.mesh, refine=refine))  # element sizes divided by `refine`
-    return run_stress(case, out, progress=print)
+    return run_stress(case, out, progress=print).summary
 
 
 if __name__ == "__main__":

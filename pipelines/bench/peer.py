@@ -44,9 +44,9 @@ def level(refine: float, out: Path) -> dict:
     data["fe"] = {**data.get("fe", {}), "element": "C3D8"}
     case = read_stress_case(Table(data, ""))
     out.mkdir(parents=True, exist_ok=True)
-    art: dict = {}
-    s = run_stress(case, out, artefacts=art)
-    write_inp_job(out, art["scene"], art["mesh"], art["result"], s["solve_s"])
+    run = run_stress(case, out)
+    s = run.summary
+    write_inp_job(out, run.scene, run.mesh, run.result, s["solve_s"])
     g, c = crosscheck(out)
     md, rows = table(g, c)
     (out / "crosscheck.md").write_text(md)

@@ -53,7 +53,8 @@ def main(argv=None) -> int:
     c = _case(position="pitch")
     art: dict = {}
     t0 = time.perf_counter()
-    s = run_stress(c, out / "pitch", artefacts=art)
+    run = run_stress(c, out / "pitch")
+    s, art = run.summary, {"result": run.result, "mesh": run.mesh}
     wall = time.perf_counter() - t0
     g1, g2 = c.pair.gear1, c.pair.gear2
     al = path_of_contact(c.pair).alpha_wt
@@ -74,9 +75,9 @@ def main(argv=None) -> int:
     eps = path_of_contact(c.pair).contact_ratio
     for gear, pos, fset, torque in ((g1, "hpstc", "pinion/tooth0/fillet_pos", c.torque * g1.teeth / g2.teeth),
                                     (g2, "lpstc", "wheel/tooth0/fillet_neg", c.torque)):
-        art = {}
-        s = run_stress(_case(position=pos, teeth=1, contact=0.2), out / pos, artefacts=art)
-        fe = art["result"].fillet_stress()[fset]["max_principal_mpa"]
+        run = run_stress(_case(position=pos, teeth=1, contact=0.2), out / pos)
+        s = run.summary
+        fe = run.result.fillet_stress()[fset]["max_principal_mpa"]
         rf = root_factors(gear, eps)
         sig = torque / gear.r_p / (gear.face_width * gear.module) * rf.y_f * rf.y_s
         L.append(f"| {gear.name} | {pos} | {fe:.1f} | {sig:.1f} | {fe / sig - 1:+.1%} | {rf.y_f:.3f} | {rf.y_s:.3f} |")
@@ -86,7 +87,7 @@ def main(argv=None) -> int:
           "| roll [deg] | phi1 [deg] | zone (TCA) | load shares (pairs -1, 0, +1) | loaded TE [arcsec] |", "|---|---|---|---|---|"]
     for t in np.linspace(path.t_c - 0.5 * path.p_bt, path.t_c + 0.5 * path.p_bt, a.positions, endpoint=False):
         cc = _case(roll=t / path.r_b1, position="max_te", refine=0.5)
-        s = run_stress(cc, out / "cycle")
+        s = run_stress(cc, out / "cycle").summary
         sh = s["load_share"]["pinion-wheel"]["teeth"]
         off = {n: d["offset"] for n, d in s["interfaces"]["pinion-wheel"]["teeth"].items()}
         zone = "single" if path.t_b < t < path.t_d else "double"
@@ -96,7 +97,7 @@ def main(argv=None) -> int:
     # 4. the helical pair as shipped
     hc = read_stress_case(load_case(CASES_DIR / "stress_helical_pair.toml"))
     t0 = time.perf_counter()
-    s = run_stress(hc, out / "helical")
+    s = run_stress(hc, out / "helical").summary
     g = hc.pair.gear2
     beta_b = math.atan(math.tan(g.helix) * g.r_b / g.r_p)
     off = {n: d["offset"] for n, d in s["interfaces"]["sun-planet"]["teeth"].items()}

@@ -92,7 +92,7 @@ def run_level(case: StressCase, refine: float, points: str = "gauss") -> dict:
 
     ``points``: the contact constraints, 'gauss' (default, issue 14) or 'nodes' (issue 6)."""
     with tempfile.TemporaryDirectory() as tmp:  # result.vtu is large and not needed here
-        s = run_stress(_refined(_method(case, points), refine), Path(tmp))
+        s = run_stress(_refined(_method(case, points), refine), Path(tmp)).summary
     itf = next(iter(s["interfaces"].values()))
     m = itf["members"]["a"]
     return {"refine": refine, "dofs": s["dofs"], "elements": s["elements"],

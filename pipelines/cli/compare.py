@@ -134,24 +134,22 @@ def handle(args) -> int:
     paths = {LABELS[0]: args.new, LABELS[1]: args.conventional}
     with staged_output(args.out) as tmp:
         tmp = Path(tmp)
-        summaries, arts = {}, {}
+        summaries, runs = {}, {}
         for label, case in cases.items():
             progress(f"== {label} design: {paths[label]}")
-            arts[label] = {}
             (tmp / label).mkdir()
-            summaries[label] = run_pipeline(case, tmp / label, progress, images=False, artefacts=arts[label])
-        lims = [zone_limits(summaries[k], arts[k]["mesh"], arts[k]["result"]) for k in LABELS]
+            runs[label] = run_pipeline(case, tmp / label, progress, images=False)
+        lims = [zone_limits(runs[k].summary, runs[k].mesh, runs[k].result) for k in LABELS]
         vm = max(x["von_mises"] for x in lims)
-        top = max(picture_range(summaries[k], arts[k]).hi for k in LABELS)  # one clipped range for both designs
+        top = max(picture_range(runs[k]).hi for k in LABELS)  # one clipped range for both designs
         for label in LABELS:
-            s = add_images(summaries[label], arts[label], tmp / label, {"von_mises": vm}, progress, top=top,
-                           show_edges=getattr(args, "edges", False))
+            s = add_images(runs.pop(label), tmp / label, {"von_mises": vm}, progress, top=top,
+                           show_edges=getattr(args, "edges", False)).summary  # frees the meshes and fields after
             s = {"kind": "run", "case": str(paths[label]), **s}
             s["files"] = [*s["files"], "report.html"]
             write_summary(s, tmp / label / "summary.json")
             run_html(s, tmp / label, Path(paths[label]).read_text())
             summaries[label] = s
-            arts[label].clear()  # free the meshes and fields
         zones = [(itf, mem) for itf, d in summaries[LABELS[0]]["interfaces"].items() for mem in d["members"]]
         imgs, pimgs, titles = [], [], []
         for label in LABELS:

@@ -88,10 +88,10 @@ def handle(args) -> int:
     t0 = time.perf_counter()
     case = read_with_overrides(args.case, args)  # bad input fails here, before any output
     with staged_output(args.out) as tmp:
-        art: dict = {}
-        s = run_pipeline(case, Path(tmp), progress=progress, artefacts=art, show_edges=args.edges)
+        run = run_pipeline(case, Path(tmp), progress=progress, show_edges=args.edges)
+        s = run.summary
         if getattr(args, "inp", False):
-            write_inp_job(Path(tmp), art["scene"], art["mesh"], art["result"], s["solve_s"])
+            write_inp_job(Path(tmp), run.scene, run.mesh, run.result, s["solve_s"])
             s = {**s, "files": [*s["files"], "job.inp", "crosscheck_ref.npz", "crosscheck_gearfe.json"]}
         s = {"kind": "run", "case": str(args.case), **s, "elapsed_s": time.perf_counter() - t0}
         s["files"] = [*s["files"], "report.html"]

@@ -49,11 +49,11 @@ def handle(args) -> int:
     t0 = time.perf_counter()
     case = read_stress_case(load_case(args.case))  # bad input fails here, before any output
     with staged_output(args.out) as tmp:
-        art: dict = {}
-        summary = run_stress(case, Path(tmp), progress=_progress, artefacts=art)
+        run = run_stress(case, Path(tmp), progress=_progress)
+        summary = run.summary
         files = ["result.vtu", "summary.json"]
         if args.inp:
-            write_inp_job(Path(tmp), art["scene"], art["mesh"], art["result"], summary["solve_s"])
+            write_inp_job(Path(tmp), run.scene, run.mesh, run.result, summary["solve_s"])
             files += ["job.inp", "crosscheck_ref.npz", "crosscheck_gearfe.json"]
         summary = {"kind": "stress", "case": str(args.case), **summary, "files": files,
                    "elapsed_s": time.perf_counter() - t0}

@@ -253,7 +253,7 @@ def fe_check(model: LTCAModel, rows: list, indices: list[int], out: Path | None 
         r = rows[i]
         c = dataclasses.replace(model.case, phi1=math.radians(r["phi1_deg"]), torque=r["torque_nm"] * 1e3)
         t0 = time.perf_counter()
-        s = run_stress(c, (out or Path(".")) / f"fe_{i}") if out is not None else _run_tmp(c, run_stress)
+        s = run_stress(c, out / f"fe_{i}").summary if out is not None else _run_tmp(c, run_stress)
         rot = loaded_te(c, s)["elastic_rotation_arcsec"]
         fe_sh = {k.split("/", 1)[-1]: v for k, v in next(iter(s["load_share"].values()))["teeth"].items()}
         names = sorted(set(fe_sh) | {k[6:] for k in r if k.startswith("share.")})
@@ -285,7 +285,7 @@ def _run_tmp(c, run_stress):
     import tempfile
 
     with tempfile.TemporaryDirectory() as d:
-        return run_stress(c, Path(d))
+        return run_stress(c, Path(d)).summary
 
 
 def run_ltca(case: StressCase, opts: LTCAOptions, out: Path, say=None, bar=None, keep_fe: bool = False) -> dict:

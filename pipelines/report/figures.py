@@ -1,6 +1,6 @@
-r"""Design-review pictures of a computed load case (issue 17): what is drawn where, from the run's artefacts.
+r"""Design-review pictures of a computed load case (issue 17): what is drawn where, from the run (:class:`pipelines.stress.run.StressRun`).
 
-Inputs are the artefacts of :func:`pipelines.stress.run.run_stress` (``tca``, ``scene``, ``mesh``,
+Inputs are the objects returned by :func:`pipelines.stress.run.run_stress` (``tca``, ``scene``, ``mesh``,
 ``result``). Every interface member of the scene (a pair's mesh; the twin drive's sun–planet and
 planet–ring meshes of members a and b) gives:
 
@@ -36,6 +36,8 @@ from pathlib import Path
 import numpy as np
 
 from tca.pair_tca import ContactKind, PairTCAResult
+from pipelines.stress.run import StressRun
+from pipelines.stress.sizing import HertzContact
 
 __all__ = ["parts_of", "elastic_displacement", "InterfaceView", "interface_views", "ellipse_outline", "ellipse_axes",
            "to_gear", "flank_zr", "surface_contact", "cut_point", "flank_set", "tca_semi_axes", "patch_extent", "flank_map",
@@ -313,7 +315,7 @@ def loaded_pair_force(v: InterfaceView, summary: dict) -> float:
     return float(sum(t["force_n"] for k, t in teeth.items() if k.startswith(f"{v.member}/") and t["offset"] == 0))
 
 
-def fe_hertz(v: InterfaceView, result, force: float) -> "HertzContact":
+def fe_hertz(v: InterfaceView, result, force: float) -> HertzContact:
     """Hertz contact (pipelines.stress.sizing.hertz_contact) under the FE force of the loaded pair [N]."""
     from pipelines.stress.sizing import hertz_contact
 
@@ -332,10 +334,9 @@ def colour_top(summary: dict, mesh, result, views) -> "object":
     return clip_range(result.von_mises[np.unique(mesh.cells[cells])], floor=1.1 * fil)
 
 
-def picture_range(summary: dict, artefacts: dict):
+def picture_range(run: StressRun):
     """:func:`colour_top` of a computed run (before its pictures are drawn; ``gearfe compare`` shares the top)."""
-    mesh = artefacts["mesh"]
-    return colour_top(summary, mesh, artefacts["result"], interface_views(artefacts["scene"], mesh, artefacts["tca"]))
+    return colour_top(run.summary, run.mesh, run.result, interface_views(run.scene, run.mesh, run.tca))
 
 
 @dataclass(frozen=True)
@@ -347,7 +348,7 @@ class Pictures:
     colour: object  # the ColourRange of the von Mises pictures
 
 
-def design_pictures(summary: dict, artefacts: dict, out: Path, *, top: float | None = None, show_edges: bool = False,
+def design_pictures(run: StressRun, out: Path, *, top: float | None = None, show_edges: bool = False,
                     size=(1300, 600)) -> Pictures:
     """All pictures of the module docstring for every interface member, into ``out``.
 
@@ -358,7 +359,7 @@ def design_pictures(summary: dict, artefacts: dict, out: Path, *, top: float | N
     from pipelines.render.maps import plot_root_stress
     from pipelines.render.views import Mark, clip_range, deformation_scale, render_deformed, render_teeth
 
-    mesh, result, scene, tca = artefacts["mesh"], artefacts["result"], artefacts["scene"], artefacts["tca"]
+    summary, mesh, result, scene, tca = run.summary, run.mesh, run.result, run.scene, run.tca
     out = Path(out)
     views = interface_views(scene, mesh, tca)
     cr = colour_top(summary, mesh, result, views)

@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -38,7 +39,7 @@ from tca.pair_tca import ARCSEC, PairTCAResult
 
 from pipelines.stress.case import StressCase
 
-from pipelines.stress.run import run_stress
+from pipelines.stress.run import StressRun, run_stress
 
 from pipelines.report.figures import design_pictures, parts_of
 
@@ -246,9 +247,9 @@ def _say(progress):
     return say
 
 
-def add_images(summary: dict, artefacts: dict, out: Path, clim: dict | None = None, progress=None,
-               top: float | None = None, show_edges: bool = False) -> dict:
-    """Render the images of a computed run into ``out`` and rewrite its reports; the updated summary.
+def add_images(run: StressRun, out: Path, clim: dict | None = None, progress=None,
+               top: float | None = None, show_edges: bool = False) -> StressRun:
+    """Render the images of a computed run into ``out`` and rewrite its reports; the run with its updated summary.
 
     ``clim``: colour ranges of the zone images (:func:`zone_images`); ``top`` [MPa]: the top of the
     von Mises range of the design-review pictures (:func:`pipelines.report.figures.design_pictures`;
@@ -257,8 +258,9 @@ def add_images(summary: dict, artefacts: dict, out: Path, clim: dict | None = No
     say = _say(progress)
     t1 = time.perf_counter()
     say("images: rendering off screen (pyvista)")
-    pics = design_pictures(summary, artefacts, Path(out), top=top, show_edges=show_edges)
-    names, peaks = zone_images(summary, artefacts["mesh"], artefacts["result"], Path(out), clim, overview_range=pics.colour)
+    summary = run.summary
+    pics = design_pictures(run, Path(out), top=top, show_edges=show_edges)
+    names, peaks = zone_images(summary, run.mesh, run.result, Path(out), clim, overview_range=pics.colour)
     for f in pics.files.values():
         names += list(f.values())
     dt = time.perf_counter() - t1
@@ -270,7 +272,7 @@ def add_images(summary: dict, artefacts: dict, out: Path, clim: dict | None = No
                 "clipped": c.clipped, "clip_percentile": c.percentile}
     s = {**summary, "interfaces": interfaces, "images": names, "pictures": pictures, "files": [*summary["files"], *names]}
     s["stages"] = {**summary["stages"], "images": summary["stages"].get("images", 0.0) + dt}
-    return _report(s, Path(out), say)
+    return replace(run, summary=_report(s, Path(out), say))
 
 
 def _report(s: dict, out: Path, say) -> dict:
@@ -283,26 +285,26 @@ def _report(s: dict, out: Path, say) -> dict:
 
 
 def run_pipeline(case: StressCase, out: Path, progress=None, clim: dict | None = None, images: bool = True,
-                 artefacts: dict | None = None, show_edges: bool = False) -> dict:
-    """Run a load case into ``out`` (module docstring); returns the summary (JSON-ready).
+                 show_edges: bool = False) -> StressRun:
+    """Run a load case into ``out`` (module docstring); the summary (JSON-ready) and the objects behind it.
 
     ``show_edges`` draws the element edges on the teeth views. ``images=False`` skips the rendering (``add_images`` does it later, e.g. with a colour range
-    common to several runs); ``artefacts`` receives the TCA result, scene, mesh and FE result.
+    common to several runs).
     """
     out = Path(out)
     say = _say(progress)
-    art = artefacts if artefacts is not None else {}
-    s = run_stress(case, out, progress=say, artefacts=art)
+    run = run_stress(case, out, progress=say)
+    s = run.summary
     stages = {k: s[f"{k}_s"] for k in ("tca", "mesh", "solve", "results")}
     t1 = time.perf_counter()
-    plots = [plot_position_te(art["tca"], math.radians(s["position"]["phi1_deg"]), out / "tca_te.png").name]
-    if isinstance(art["tca"], PairTCAResult):
+    plots = [plot_position_te(run.tca, math.radians(s["position"]["phi1_deg"]), out / "tca_te.png").name]
+    if isinstance(run.tca, PairTCAResult):
         from pipelines.render.plots import plot_contact_paths
 
         g = case.pair
-        plots.append(plot_contact_paths(art["tca"], out / "tca_paths.png", (g.gear1.name, g.gear2.name)).name)
+        plots.append(plot_contact_paths(run.tca, out / "tca_paths.png", (g.gear1.name, g.gear2.name)).name)
     stages["images"] = time.perf_counter() - t1
     s = {**s, "images": [], "plots": plots, "files": ["result.vtu", "report.md", "summary.json", *plots], "stages": stages}
     if images:
-        return add_images(s, art, out, clim, progress, show_edges=show_edges)
-    return _report(s, out, say)
+        return add_images(replace(run, summary=s), out, clim, progress, show_edges=show_edges)
+    return replace(run, summary=_report(s, out, say))

@@ -3,7 +3,8 @@
 Library API (used by ``gearfe stress`` and by the ``run``/``compare``/``sweep`` commands)::
 
     case = read_stress_case(load_case("pipelines/cases/stress_part1_new.toml"))
-    summary = run_stress(case, Path("out/new"), progress=print)   # writes out/new/result.vtu
+    run = run_stress(case, Path("out/new"), progress=print)   # writes out/new/result.vtu
+    run.summary["max_contact_pressure_mpa"], run.mesh, run.result  # the summary and the objects behind it
 
 Near a transition of a mesh the next pair of teeth (``position.next_pair_gap_um`` from the TCA)
 closes under load and shares it: the other teeth's loaded flanks are meshed at
@@ -66,10 +67,13 @@ from __future__ import annotations
 import json
 import math
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from fem.result import FEResult
+from mesher.hexmesh import HexMesh
 from tca.errors import InputError
 from tca.pair_tca import ARCSEC, run_pair_tca
 from tca.iso6336 import tooth_root
@@ -80,9 +84,20 @@ from tca.planetary_regulation import nominal_peak, regulate_member, twin_te
 from pipelines.stress.case import StressCase
 from pipelines.stress.model import check_resources, mesh_scene, solve_scene
 from pipelines.stress.results import member_teeth, summarize
-from pipelines.stress.scene import pair_scene, twin_scene
+from pipelines.stress.scene import Scene, pair_scene, twin_scene
 
-__all__ = ["run_stress", "build_scene"]
+__all__ = ["StressRun", "run_stress", "build_scene"]
+
+
+@dataclass(frozen=True, eq=False)
+class StressRun:
+    """A solved stress case: its summary and the objects behind it, for reports and further analysis."""
+
+    summary: dict  # JSON-ready record, written as summary.json (keys in the module docstring)
+    tca: object  # PairTCAResult (pair model) or TwinTE (twin model)
+    scene: Scene  # the parts, interfaces and supports that were meshed
+    mesh: HexMesh
+    result: FEResult  # displacements, stresses, contact pressure
 
 
 def _regulation(case: StressCase, cache: dict, progress) -> tuple[tuple, dict]:
@@ -217,12 +232,11 @@ def _iso6336(case: StressCase) -> dict:
             "iso6336": rec}
 
 
-def run_stress(case: StressCase, out: Path, progress=None, artefacts: dict | None = None) -> dict:
-    """TCA, mesh, contact solve and results of a case; writes ``out/result.vtu`` and returns the summary.
+def run_stress(case: StressCase, out: Path, progress=None) -> StressRun:
+    """TCA, mesh, contact solve and results of a case; writes ``out/result.vtu``; the summary and its objects.
 
     ``progress(message)`` (optional) receives one line per stage, starting with the stage name
-    ('tca', 'mesh', 'solve', 'results'). ``artefacts`` (optional dict) receives the objects behind
-    the summary for further reports: ``tca`` (PairTCAResult or TwinTE), ``scene``, ``mesh``, ``result``.
+    ('tca', 'mesh', 'solve', 'results').
     """
     out = Path(out)
     t0, c0 = time.perf_counter(), time.process_time()
@@ -252,8 +266,6 @@ def run_stress(case: StressCase, out: Path, progress=None, artefacts: dict | Non
     s = summarize(scene, mesh, model, r)
     out.mkdir(parents=True, exist_ok=True)
     r.write_vtu(out / "result.vtu")
-    if artefacts is not None:
-        artefacts.update(tca=tca_obj, scene=scene, mesh=mesh, result=r)
     t_res = time.perf_counter() - t1
     say(f"results: max von Mises {s['max_von_mises_mpa']:.1f} MPa, max contact pressure {s['max_contact_pressure_mpa']:.1f} MPa, "
         f"torque balance error {s['torque_balance_error']:.2e}")
@@ -273,5 +285,5 @@ def run_stress(case: StressCase, out: Path, progress=None, artefacts: dict | Non
         "mesh": {"refine": case.mesh.refine, "teeth": case.mesh.teeth, "parts": len(scene.parts)},
         "files": ["result.vtu"],
     }
-    return _finite(json.loads(json.dumps(summary, default=_json)))
+    return StressRun(_finite(json.loads(json.dumps(summary, default=_json))), tca_obj, scene, mesh, r)
 

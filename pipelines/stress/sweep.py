@@ -142,7 +142,7 @@ def run_point_stress(case_dict: dict, out: Path) -> dict:
     from pipelines.stress.run import run_stress
 
     case = read_stress_case(Table(copy.deepcopy(case_dict), ""))
-    s = run_stress(case, Path(out))
+    s = run_stress(case, Path(out)).summary
     s["loaded_te"] = loaded_te(case, s)
     t0 = time.perf_counter()
     gap = second_pair_gap(case, math.radians(s["position"]["phi1_deg"])) / ARCSEC if case.model == "pair" else None

@@ -2,7 +2,6 @@
 and a short cantilever against beam theory."""
 
 import numpy as np
-import pytest
 from skfem import Basis, ElementHex1, ElementVector, MeshHex, asm
 from skfem.models.elasticity import linear_elasticity
 

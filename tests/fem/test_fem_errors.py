@@ -6,7 +6,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from fem import Body, ContactOptions, ContactPair, FEModel, Fixed, Material, Rigid, solve
+from fem import Body, ContactOptions, ContactPair, Fixed, Material, Rigid, solve
 from fem.verification import block_chain, hertz_line
 from tca.errors import ConvergenceError, InputError
 

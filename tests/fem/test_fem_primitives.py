@@ -5,7 +5,6 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from fem import STEEL
 from fem.elements import hex_geometry
 from mesher import primitives as prim
 from tca.errors import InputError

@@ -10,11 +10,9 @@ error line, no traceback, no files (checked by :func:`tests.hostile.test_hostile
 
 from __future__ import annotations
 
-import copy
 import tempfile
 from pathlib import Path
 
-import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 

@@ -31,9 +31,8 @@ def spur(position: str, teeth: int = 1, **mesh):
 def test_hertz_line_contact_at_the_pitch_point(tmp_path):
     c = spur("pitch")
     g1, g2 = c.pair.gear1, c.pair.gear2
-    art = {}
-    s = run_stress(c, tmp_path, artefacts=art)
-    r, mesh = art["result"], art["mesh"]
+    run = run_stress(c, tmp_path)
+    s, r, mesh = run.summary, run.result, run.mesh
     # closed forms, independent of the TCA curvatures: rho from the base radii and the pressure angle
     al = path_of_contact(c.pair).alpha_wt
     rho = 1.0 / (1.0 / (g1.r_b * math.tan(al)) + 1.0 / (g2.r_b * math.tan(al)))
@@ -63,9 +62,9 @@ def test_hertz_line_contact_at_the_pitch_point(tmp_path):
 
 def test_pinion_root_stress_at_the_hpstc_against_iso_6336_3(tmp_path):
     c = spur("hpstc", contact=0.2)  # the root stress does not need the Hertz band resolved (b = 0.125 mm)
-    art = {}
-    s = run_stress(c, tmp_path, artefacts=art)
-    fe = art["result"].fillet_stress()["pinion/tooth0/fillet_pos"]["max_principal_mpa"]
+    run = run_stress(c, tmp_path)
+    s = run.summary
+    fe = run.result.fillet_stress()["pinion/tooth0/fillet_pos"]["max_principal_mpa"]
     eps = path_of_contact(c.pair).contact_ratio
     rf = root_factors(c.pair.gear1, eps)
     t1 = c.torque * c.pair.gear1.teeth / c.pair.gear2.teeth

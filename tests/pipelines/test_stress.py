@@ -149,7 +149,7 @@ def test_pair_peak_pressure_near_hertz_at_fine_contact_mesh(tmp_path):
     and the half-space error (-6 %); a wrong E*, load or curvature (p0 ~ (P E*^2 / R^2)^(1/3)) leaves it.
     """
     c = case("stress_pair_small", **{"mesh.contact_size_mm": 0.03, "mesh.axial_contact_size_mm": 0.35})
-    s = run_stress(c, tmp_path / "fine")
+    s = run_stress(c, tmp_path / "fine").summary
     hz = s["interfaces"]["sun-planet"]["members"]["a"]["hertz_estimate"]
     assert not hz["line"] and hz["p0_mpa"] == pytest.approx(2312, rel=0.01)
     assert 0.90 < s["max_contact_pressure_mpa"] / hz["p0_mpa"] < 1.10
@@ -167,13 +167,13 @@ TWIN_MESH = {"mesh.refine": 0.4, "mesh.teeth": 1}
 
 @pytest.fixture(scope="module")
 def new_design(tmp_path_factory):
-    return run_stress(case("stress_part1_new", **TWIN_MESH), tmp_path_factory.mktemp("new"))
+    return run_stress(case("stress_part1_new", **TWIN_MESH), tmp_path_factory.mktemp("new")).summary
 
 
 @pytest.fixture(scope="module")
 def conventional(tmp_path_factory):
     return run_stress(case("stress_part1_conventional", **{"mesh.refine": 0.3, "mesh.teeth": 1}),
-                      tmp_path_factory.mktemp("conv"))
+                      tmp_path_factory.mktemp("conv")).summary
 
 
 def test_new_design_shares_the_load_between_members_without_edge_contact(new_design):
@@ -313,7 +313,7 @@ def test_pair_at_a_transition_shares_the_load_between_two_pairs(tmp_path):
     trans = run_pair_tca(c0.pair, c0.tca).transitions
     assert len(trans) == 1  # one cycle
     c = case("stress_pair_small", position=None, phi1_deg=math.degrees(float(trans[0])))
-    s = run_stress(c, tmp_path / "t")
+    s = run_stress(c, tmp_path / "t").summary
     pos = s["position"]
     assert pos["next_pair_gap_um"] < 0.1  # two pairs in contact by the TCA (measured 0.002 um)
     shares_sum_to_one(s)

@@ -38,7 +38,7 @@ def next_pair_share(summary):
 
 
 def test_neighbouring_pair_shares_the_load_near_a_transition(tmp_path):
-    s = run_stress(case_at(-5.71), tmp_path / "default")
+    s = run_stress(case_at(-5.71), tmp_path / "default").summary
     nxt, cur, tot = next_pair_share(s)
     assert tot == pytest.approx(1.0, abs=1e-9)
     # converged value 0.545 (finest meshes above); the default keeps it within 0.05
@@ -48,13 +48,13 @@ def test_neighbouring_pair_shares_the_load_near_a_transition(tmp_path):
 
 def test_coarse_neighbours_miss_the_sharing(tmp_path):
     """The reason for the neighbour size: with coarse neighbouring flanks the next pair stays open."""
-    s = run_stress(case_at(-5.71, neighbour_size_mm=3.0), tmp_path / "coarse")  # = the coarse size, 3 mm
+    s = run_stress(case_at(-5.71, neighbour_size_mm=3.0), tmp_path / "coarse").summary  # = the coarse size, 3 mm
     nxt, cur, _ = next_pair_share(s)
     assert nxt < 0.01 and cur > 0.99
 
 
 def test_one_pair_carries_the_load_mid_cycle(tmp_path):
     """At the maximum of the TE (mid-cycle) the neighbouring pairs' gaps exceed the approach."""
-    s = run_stress(case_at(-1.3171), tmp_path / "mid")
+    s = run_stress(case_at(-1.3171), tmp_path / "mid").summary
     nxt, cur, _ = next_pair_share(s)
     assert cur > 0.999
