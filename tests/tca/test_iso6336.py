@@ -3,9 +3,10 @@
 ISO's s_Fn and ρ_F are closed forms of the trochoid cut by the basic rack's tip rounding; the
 gear's own fillet surface (tca.profile: envelope of the rack-cutter) is an independent path to the
 same two numbers: the fillet point whose tangent makes 30° with the tooth centre line, its chord
-2|y| and its radius of curvature. No published worked example of Y_F and Y_S with these inputs was
-found (ISO/TR 6336-30 is not freely available), so Y_F and Y_S are checked through the quantities they are
-built from plus their limits.
+2|y| and its radius of curvature. Y_F and Y_S themselves are not compared with published worked
+values (ISO/TR 6336-30 has worked examples; they were not consulted here): they are checked through
+the quantities they are built from, their trends, and the FE root stress
+(tests/pipelines/test_standard_gears.py).
 """
 
 import math
