@@ -117,9 +117,9 @@ def write_reference(out: Path, scene, mesh, result, solve_s: float) -> Quantitie
     for i, b in enumerate(mesh.bodies):
         body_of_node[np.unique(mesh.cells[mesh.body_cells(b)])] = i
     fixed = np.unique(np.concatenate([set_nodes(mesh, s.set, "fixed") for b in model.bodies for s in b.supports
-                                      if b.name == scene.reaction[0]]))
+                                      if b.name == scene.reaction.body]))
     ref = {"points": mesh.points, "node_body": body_of_node, "bodies": np.array(mesh.bodies), "fixed_nodes": fixed,
-           "reaction_point": np.asarray(scene.reaction[1], float), "reaction_axis": np.asarray(scene.reaction[2], float),
+           "reaction_point": np.asarray(scene.reaction.point, float), "reaction_axis": np.asarray(scene.reaction.axis, float),
            "fillet_nodes": np.unique(np.concatenate([set_nodes(mesh, s, "fillet") for s in model.fillet_sets])),
            "pair_names": np.array([c.name for c in model.contacts]),
            "pair_slave": np.array([abaqus_name(c.slave) for c in model.contacts]),

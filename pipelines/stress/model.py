@@ -185,7 +185,7 @@ def mesh_scene(scene: Scene) -> HexMesh:
                            neighbour_size=s.neighbour)
         m = mesh_gear(p.gear, opts, centre=p.centre, focus=p.focus).transformed(p.R, p.t)
         bodies.setdefault(p.body, []).append((p, m))
-    refs = {b: r for b, (r, _) in scene.rigid.items()}
+    refs = {b: rb.ref for b, rb in scene.rigid.items()}
     meshes = []
     for body, items in bodies.items():
         if len(items) == 1 and not items[0][0].label:
@@ -231,7 +231,7 @@ def fe_model(scene: Scene, fe: FESettings, search_gap: float | None = None) -> F
         if b == scene.fixed:
             bodies.append(Body(b, (Fixed(f"{b}/rim"),), mat))
         else:
-            ref, torque = scene.rigid[b]
+            torque = scene.rigid[b].torque
             bodies.append(Body(b, (Rigid(f"{b}/rim", b, free=("rz",), torque=torque),), mat))
     contacts = []
     for itf in scene.interfaces:

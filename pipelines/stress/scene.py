@@ -52,6 +52,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from typing import NamedTuple
 
 import numpy as np
 
@@ -69,7 +70,7 @@ from tca.units import ARCSEC
 
 from pipelines.stress.sizing import ContactSizes, HertzContact, SizeRules, contact_sizes, hertz_contact
 
-__all__ = ["MeshContact", "mesh_contact", "contact_length", "Part", "Interface",
+__all__ = ["MeshContact", "mesh_contact", "contact_length", "Part", "Interface", "RigidBody", "Reaction",
            "Scene", "pair_scene", "twin_scene", "PHASES"]
 
 _SIDE = {1: "pos", -1: "neg"}
@@ -121,6 +122,22 @@ class Interface:
         return [(q - c1, t1[q], t2[q - c1 + c2]) for q in range(len(t1)) if 0 <= q - c1 + c2 < len(t2)]
 
 
+class RigidBody(NamedTuple):
+    """A body held rigid on its rim by a reference node on its axis, only the rotation about it free."""
+
+    ref: ReferencePoint
+    torque: float  # applied about the reference axis [N mm]
+
+
+class Reaction(NamedTuple):
+    """The support whose reaction torque checks the equilibrium of a scene."""
+
+    body: str  # the body held on its rims
+    point: tuple  # a point of its axis [mm]
+    axis: tuple  # unit axis
+    expected: float  # expected support torque about the axis [N mm]
+
+
 @dataclass(frozen=True, eq=False)
 class Scene:
     """Everything needed to mesh and solve one position (see module docstring)."""
@@ -129,8 +146,8 @@ class Scene:
     parts: tuple
     interfaces: tuple
     fixed: str  # body held on its rims
-    rigid: dict  # body -> (ReferencePoint, torque [N mm] about its axis)
-    reaction: tuple  # (body, point, axis, expected support torque [N mm])
+    rigid: dict  # body -> RigidBody
+    reaction: Reaction
     ratio: float  # expected reaction torque / applied torque
     info: dict = field(default_factory=dict)  # position, TE, regulation (JSON-ready)
 
@@ -199,8 +216,8 @@ def pair_scene(pair: GearPair, result: PairTCAResult, phi1: float, torque: float
             "instantaneous_ratio": c.ratio, "te_slope": c.slope, "next_pair_gap_um": c.next_gap * 1e3,
             "loaded_teeth": {g1.name: itf.driver.centre, g2.name: itf.driven.centre}}
     return Scene("pair", (itf.driver, itf.driven), (itf,), g1.name,
-                 {g2.name: (ReferencePoint(tuple(m2.origin), tuple(m2.axis)), -abs(torque))},
-                 (g1.name, tuple(m1.origin), tuple(m1.axis), abs(torque) * ratio), ratio, info)
+                 {g2.name: RigidBody(ReferencePoint(tuple(m2.origin), tuple(m2.axis)), -abs(torque))},
+                 Reaction(g1.name, tuple(m1.origin), tuple(m1.axis), abs(torque) * ratio), ratio, info)
 
 
 
@@ -286,5 +303,5 @@ def twin_scene(train: PlanetaryTrain, subs: dict, errors: ShaftErrors, dz: tuple
             "ring_angle_deg": math.degrees(phi3_lead), "members": members, "shaft": i + 1,
             "d_ex_um": errors.d_ex * 1e3, "d_gamma_arcmin": math.degrees(errors.d_gamma) * 60}
     return Scene("twin", tuple(parts), tuple(itfs), "sun",
-                 {"planet": (planet_ref, 0.0), "ring": (ring_ref, -abs(torque))},
-                 ("sun", (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), abs(torque) * ratio), ratio, info)
+                 {"planet": RigidBody(planet_ref, 0.0), "ring": RigidBody(ring_ref, -abs(torque))},
+                 Reaction("sun", (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), abs(torque) * ratio), ratio, info)
