@@ -18,7 +18,6 @@ import numpy as np
 import pytest
 
 from pipelines.cases.reader import load_case
-from pipelines.cases.schema import Table
 from pipelines.cli import main
 from pipelines.stress.frd import read_dat_totals, read_frd
 
@@ -53,7 +52,6 @@ def _case(tmp_path, name, **over):
     emit("", data)
     path = tmp_path / f"{name}.toml"
     path.write_text("\n".join(lines) + "\n")
-    Table(data, "")  # same data
     return path
 
 
