@@ -1,14 +1,13 @@
-"""The stress speed-vs-error benchmark: error bookkeeping on analytic sequences, and a real --quick run."""
+"""The stress speed-vs-error benchmark: error bookkeeping on analytic sequences (the run itself: `make bench`)."""
 
 from __future__ import annotations
 
-import json
 import math
 
 import pytest
 
 from pipelines.bench import AREAS
-from pipelines.bench.stress import QUANTITIES, choose_refine, errors_of, main
+from pipelines.bench.stress import choose_refine, errors_of
 
 Q = math.sqrt(2.0)
 
@@ -52,36 +51,5 @@ def test_stress_area_is_registered():
         assert area in AREAS
 
 
-def test_quick_run_writes_report_and_plots(tmp_path):
-    # three coarse levels of the real sun-planet contact model, a coarse speed check and two Hertz solves
-    assert main(["--out", str(tmp_path), "--quick"]) == 0
-    md = (tmp_path / "stress.md").read_text()
-    data = json.loads((tmp_path / "stress.json").read_text())
-    for name in ("stress_error_dof.png", "stress_error_time.png", "stress_values.png"):
-        png = tmp_path / name
-        assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000
-    rows = data["levels"]
-    assert len(rows) == 3
-    assert [r["dofs"] for r in rows] == sorted(r["dofs"] for r in rows)
-    for r in rows:
-        assert f"| {r['refine']:.3f} | {r['dofs']} |" in md
-        for k in QUANTITIES:
-            assert f"{r[k]:.1f}" in md
-        assert r["contact_force_n"] == pytest.approx(r["hertz"]["load_n"], rel=0.01)  # all the load on the loaded pair
-    for k, e in data["errors"].items():  # errors are |f - reference| / reference
-        for r, x in zip(rows, e["errors"]):
-            if x is not None:
-                assert x == pytest.approx(abs(r[k] - e["reference"]) / e["reference"], rel=1e-9)
-    s = data["speed"]
-    assert s["ratio"] == pytest.approx(s["best"]["contact_solve_s"] / s["linear"]["pardiso_s"])
-    assert f"= {s['ratio']:.2f} |" in md
-    # issue 14 tolerance on the peak Hertz pressure at 3 elements per half-width with the default constraints: 3 %
-    for key in ("line", "point"):
-        for r in data["hertz"][key]:
-            assert f"{r['p_err']:+.2%}" in md
-            if r["points"] == "gauss":
-                assert abs(r["p_err"]) < 0.03 and abs(r["moment_a_err"]) < 0.10
-    # issue 14: today's method beside the default at every level, same meshes
-    st = data["pressure"]
-    assert [r["dofs"] for r in st["nodes_levels"]] == [r["dofs"] for r in rows]
-    assert "Targets (issue 14)" in md
+# The --quick smoke run of the whole benchmark (60-120 s) moved to `make bench` (issue 13: `make test` under
+# 5 minutes); the error bookkeeping above is what the benchmark's numbers rest on.

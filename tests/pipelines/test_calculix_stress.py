@@ -18,7 +18,6 @@ import numpy as np
 import pytest
 
 from pipelines.cases.reader import load_case
-from pipelines.cases.schema import Table
 from pipelines.cli import main
 from pipelines.stress.frd import read_dat_totals, read_frd
 
@@ -53,7 +52,6 @@ def _case(tmp_path, name, **over):
     emit("", data)
     path = tmp_path / f"{name}.toml"
     path.write_text("\n".join(lines) + "\n")
-    Table(data, "")  # same data
     return path
 
 
@@ -207,3 +205,40 @@ def test_spur_pair_shares_two_tooth_pairs_like_calculix(spur_check):
     for k, r in rows.items():
         if k.startswith("load share"):
             assert abs(r["difference"]) <= 0.02, (k, r)
+
+
+@pytest.mark.parametrize("axis", [(0.0, 0.0, 1.0), (0.3, -0.2, 0.93), (0.9, 0.1, 0.4), (0.0, 1.0, 0.0)])
+def test_rotation_node_constraints_leave_only_the_axis_free(axis):
+    # the held rotations about e1, e2 (fem.constraints.axis_frame) as *BOUNDARY/*EQUATION lines: their null
+    # space must be the axis e3, and the torque on the independent DOF must do the work T phi for theta = e3 phi
+    from fem.constraints import axis_frame
+    from pipelines.stress.ccx import _node_dofs
+
+    R = axis_frame(axis)
+    T = 1234.5
+    bnd, eqs, cl = _node_dofs(7, R, [0, 1], np.zeros(2), T * R[:, 2])
+    rows = []
+    for b in bnd:
+        _, d, _, v = b.split(", ")
+        row = np.zeros(3)
+        row[int(d) - 1] = 1.0
+        rows.append(row)
+        assert float(v) == 0.0
+    for e in eqs:
+        lines = e.splitlines()
+        assert int(lines[0]) == len(lines) - 1
+        row = np.zeros(3)
+        for term in lines[1:]:
+            node, d, c = term.split(", ")
+            assert int(node) == 7
+            row[int(d) - 1] = float(c)
+        rows.append(row)
+    C = np.array(rows)
+    assert C.shape == (2, 3)
+    np.testing.assert_allclose(C @ R[:, 2], 0.0, atol=1e-12)  # the axis is free
+    assert np.linalg.matrix_rank(C) == 2  # and only the axis
+    theta = R[:, 2] * 0.01
+    work = sum(float(line.split(", ")[2]) * theta[int(line.split(", ")[1]) - 1] for line in cl)
+    assert work == pytest.approx(T * 0.01, rel=1e-12)
+    dependent = {int(b.split(", ")[1]) for b in bnd} | {int(e.splitlines()[1].split(", ")[1]) for e in eqs}
+    assert not dependent & {int(line.split(", ")[1]) for line in cl}  # no load on a constrained DOF
