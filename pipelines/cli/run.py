@@ -22,6 +22,7 @@ import time
 from pathlib import Path
 
 from tca.errors import InputError
+from tca.pair_te import POSITIONS
 
 from pipelines.cases.reader import load_case
 from pipelines.cli.outdir import staged_output
@@ -66,8 +67,14 @@ def read_with_overrides(path, args) -> StressCase:
     if args.position is not None:
         data.pop("phi1_deg", None)
         data.pop("roll_deg", None)
-        # an integer index (ASCII digits only: '²'.isdigit() is true), else a named position checked by the case reader
-        data["position"] = int(args.position) if re.fullmatch(r"-?[0-9]{1,9}", args.position) else args.position
+        # an integer index (ASCII digits only: '²'.isdigit() is true) or a named position
+        if re.fullmatch(r"-?[0-9]{1,9}", args.position):
+            data["position"] = int(args.position)
+        elif args.position in POSITIONS:
+            data["position"] = args.position
+        else:
+            raise InputError("--position", args.position,
+                             ", ".join(repr(p) for p in POSITIONS) + " or an integer index of the TCA grid")
     if args.refine is not None:
         if not isinstance(data.get("mesh", {}), dict):
             raise InputError("mesh", data["mesh"], "a table [mesh] (--refine sets mesh.refine)")
