@@ -18,12 +18,14 @@ $(VENV)/.installed: pyproject.toml
 	touch $@
 
 # Part 1, Numerical Example 1.3: new vs conventional design (Fig. 1.9), then the TCA of the sun-planet pair
+# (--force: a second `make run` replaces the results of the first)
 run: install
 	$(BIN)/gearfe compare pipelines/cases/stress_part1_new.toml pipelines/cases/stress_part1_conventional.toml \
-		--out $(OUT)/part1_compare
-	$(BIN)/gearfe tca pipelines/cases/part1_sun_planet.toml --out $(OUT)/part1_sun_planet
+		--out $(OUT)/part1_compare --force
+	$(BIN)/gearfe tca pipelines/cases/part1_sun_planet.toml --out $(OUT)/part1_sun_planet --force
+	@echo "report: $(OUT)/part1_compare/report.html (both designs side by side, every picture embedded)"
 	@echo "images: $(OUT)/part1_compare/compare_zones.png, compare_pressure.png, compare_overview.png;"
-	@echo "        each design: $(OUT)/part1_compare/{new,conventional}/ (report.md, zone_*.png, overview.png, result.vtu)"
+	@echo "        each design: $(OUT)/part1_compare/{new,conventional}/ (report.html, teeth_*.png, flank_*.png, ...)"
 	@echo "        TCA plots: $(OUT)/part1_sun_planet/te.png, contact_paths.png"
 
 # two workers, one test file each (module fixtures are built once): 3 min instead of 5 on 2 cores
