@@ -20,7 +20,7 @@ from .pair import GearPair
 from .pair_bounded import bounded_pass
 from .pair_result import ContactKind, ReferencePairSolution, TCAOptions, _flanks
 
-__all__ = ["solve_reference_pair"]
+__all__ = ["solve_reference_pair", "classify_tangency"]
 
 
 def _contact_ratio(pair: GearPair) -> float:
@@ -71,6 +71,23 @@ def _centre_preference(f1: PlacedFlank):
         return p
 
     return prefer
+
+
+def classify_tangency(f1, f2, X: np.ndarray, tan_ok: np.ndarray, area_tol: float, kind: np.ndarray,
+                      phi2: np.ndarray) -> None:
+    """Mark the points of tangency inside both working areas SURFACE and those beyond the start of a fillet only
+    FILLET (contact with the fillet region), with their phi2 [rad]; in place, the others untouched."""
+    n = len(X)
+    it = np.flatnonzero(tan_ok)
+    viol = np.zeros((n, 2, 4), bool)
+    if len(it):
+        viol[it] = _constraints(f1, f2, X[it]) > area_tol
+    inside = tan_ok & ~viol.reshape(n, -1).any(-1)
+    kind[inside] = ContactKind.SURFACE
+    phi2[inside] = X[inside, 4]
+    fillet_only = tan_ok & ~inside & ~viol[:, :, 1:].any((1, 2))
+    kind[fillet_only] = ContactKind.FILLET
+    phi2[fillet_only] = X[fillet_only, 4]
 
 
 def _constraints(f1, f2, x):
@@ -226,16 +243,7 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
         if np.any(resid[it] > opts.max_residual):
             k = it[np.argmax(resid[it])]
             raise ConvergenceError("pair TCA verification", f"phi1 = {math.degrees(phis[k]):.6f} deg", float(resid[k]), 0)
-    viol = np.zeros((n, 2, 4), bool)
-    if len(it):
-        viol[it] = _constraints(f1, f2, X[it]) > opts.area_tol
-    inside = tan_ok & ~viol.reshape(n, -1).any(-1)
-    kind[inside] = ContactKind.SURFACE
-    phi2[inside] = X[inside, 4]
-    # tangency beyond the fillet start only (contact with the fillet region of a flank)
-    fillet_only = tan_ok & ~inside & ~viol[:, :, 1:].any((1, 2))
-    kind[fillet_only] = ContactKind.FILLET
-    phi2[fillet_only] = X[fillet_only, 4]
+    classify_tangency(f1, f2, X, tan_ok, opts.area_tol, kind, phi2)
 
     ref = ReferencePairSolution(phis, phi2, X, kind, resid, where, js, total_its, tan_ok, beyond)
     if bounded == "all":

@@ -74,7 +74,7 @@ def solve_candidate_pair(pair: GearPair, ref: ReferencePairSolution, k: int, idx
     ``ref`` is the reference pair of the pair *without* turned run-out (its solution is the
     Newton guess); the returned solution lives on the same grid as ``ref``.
     """
-    from .pair_reference import _constraints, _in_domain  # the reference pair's classification
+    from .pair_reference import _in_domain, classify_tangency  # the reference pair's classification
 
     pk = turned_pair(pair, k)
     f1, f2 = _flanks(pk)
@@ -91,7 +91,6 @@ def solve_candidate_pair(pair: GearPair, ref: ReferencePairSolution, k: int, idx
     phi2 = np.full(n, -np.inf)
     resid = np.full(n, np.nan)
     it = np.flatnonzero(tan_ok)
-    viol = np.zeros((n, 2, 4), bool)
     if len(it):
         Fv, _ = tangency_system(f1, f2, ref.phi1[it])(X[it], np.arange(len(it)))
         resid[it] = np.abs(Fv).max(-1)
@@ -99,13 +98,7 @@ def solve_candidate_pair(pair: GearPair, ref: ReferencePairSolution, k: int, idx
             q = it[np.argmax(resid[it])]
             raise ConvergenceError(f"pair TCA with run-out (pair {k})", f"phi1 = {math.degrees(ref.phi1[q]):.6f} deg",
                                    float(resid[q]), 0)
-        viol[it] = _constraints(f1, f2, X[it]) > opts.area_tol
-    inside = tan_ok & ~viol.reshape(n, -1).any(-1)
-    kind[inside] = ContactKind.SURFACE
-    phi2[inside] = X[inside, 4]
-    fillet_only = tan_ok & ~inside & ~viol[:, :, 1:].any((1, 2))
-    kind[fillet_only] = ContactKind.FILLET
-    phi2[fillet_only] = X[fillet_only, 4]
+    classify_tangency(f1, f2, X, tan_ok, opts.area_tol, kind, phi2)
     # positions the reference pair found out of mesh stay out of mesh (20 um of eccentricity does
     # not bring a pair a module closer); positions not asked for are marked out of mesh too
     oom = ref.out_of_mesh.copy()
