@@ -6,16 +6,18 @@ planet–ring meshes of members a and b) gives:
 
 * ``teeth_<interface>_<member>.png`` — :func:`pipelines.render.views.render_teeth`: the driver and
   driven parts (three teeth each) along the gear axis, and the loaded flank's part along the
-  contact normal; von Mises [MPa] on one colour range per run clipped at the
-  99.5th percentile (labelled), the loaded pair marked by an arrow at the TCA contact point;
+  contact normal; von Mises [MPa] on one colour range per run (:func:`colour_top`: the 99.5th
+  percentile of the shown nodes, at least 1.1 × the largest fillet von Mises stress; labelled as
+  clipped), the loaded pair marked by an arrow at the TCA contact point;
 * ``deformed_<interface>_<member>.png`` — the same axial view, displacements scaled;
 * ``flank_<interface>_<member>.png`` — the FE contact pressure on the loaded (slave) flank in the
   flank's own coordinates (axial position :math:`z` and radius :math:`\rho = \sqrt{x^2+y^2}` in the
   gear frame :math:`x_g = R^T(x_f - t)`, invariant to the tooth index), with the TCA's path of
   contact on that tooth surface (``point1``/``point2`` of the pair TCA over its grid), the TCA's
   contact ellipse at the analysed position (semi-axes :math:`\sqrt{2\delta/\lambda_i}`, δ the TCA's
-  elastic approach, Eq. of :mod:`tca.ellipse`) and the Hertz ellipse under the FE load
-  (:func:`pipelines.stress.sizing.hertz_contact`); FE patch against TCA prediction;
+  elastic approach, :mod:`tca.ellipse`) and the Hertz ellipse under the FE force of the loaded pair
+  (:func:`pipelines.stress.sizing.hertz_contact`); FE patch against TCA prediction (no ellipse at an
+  edge or corner contact);
 * ``section_<interface>_<member>.png`` — the transverse plane through the TCA contact point
   (normal: the slave gear's axis): von Mises of both loaded teeth with their fillets, and a zoom
   under the contact with the depth of the Hertz maximum shear (0.78 b for a line contact,
