@@ -1,0 +1,43 @@
+"""Mesh convergence of a gear-level stress (issue 13): the fillet's maximum principal stress of the loaded
+teeth converges under refinement of the whole model, with an observed order above 0.5.
+
+Case: the shipped crowned pair (pipelines/cases/stress_pair_small.toml, Table 1.1 sun driving the
+double-crowned planet, 3 arcmin) at refine 0.5, 0.707 and 1 (element sizes in the ratio sqrt(2); 51k, 86k
+and 147k DOF, about 20 s on the quiet 2-core machine). Measured: 554.0, 575.6, 587.8 MPa, observed order 1.6,
+Richardson value 604 MPa (the default refine 1 is 2.7 % below it). With the earlier node-averaged contact
+gaps the same study gave no asymptotic order at affordable sizes (differences growing).
+"""
+
+import math
+from dataclasses import replace
+
+import pytest
+
+from pipelines.bench.convergence import richardson
+from pipelines.cases import CASES_DIR, load_case
+from pipelines.stress import read_stress_case, run_stress
+
+REFINE = (0.5, math.sqrt(0.5), 1.0)
+
+
+@pytest.fixture(scope="module")
+def fillet(tmp_path_factory):
+    case = read_stress_case(load_case(CASES_DIR / "stress_pair_small.toml"))
+    out = []
+    for r in REFINE:
+        s = run_stress(replace(case, mesh=replace(case.mesh, refine=r)), tmp_path_factory.mktemp(f"r{r:.3f}")).summary
+        out.append(s["max_fillet_stress_mpa"])
+    return out
+
+
+def test_fillet_stress_converges_with_an_observed_order_above_one_half(fillet):
+    h = [1.0 / r for r in REFINE]  # element sizes are divided by refine
+    rich = richardson(h, fillet)
+    # issue 13: observed order > 0.5 over three levels (a consistent discretisation of a smooth stress field;
+    # trilinear elements would give 2 in the asymptotic range)
+    assert rich.order > 0.5
+    # monotone, with shrinking differences
+    d1, d2 = fillet[1] - fillet[0], fillet[2] - fillet[1]
+    assert d1 > 0 and 0 < d2 < d1
+    # the default (refine 1) within 5 % of the extrapolated value, as the docs claim for fillet stresses
+    assert abs(fillet[-1] / rich.value - 1) < 0.05
