@@ -1,6 +1,6 @@
 """`make bench`: every area's speed-vs-error benchmark, one subprocess each, gathered in one report.
 
-Each ``pipelines.bench_<area>`` module writes its markdown report (and plots) into
+Each ``pipelines.bench.<area>`` module writes its markdown report (and plots) into
 ``<out>/<area>/``; this runner writes ``<out>/REPORT.md`` linking them. TCA runs on one core (the target is per core); the FE
 benchmarks (``fem``, ``stress``: the speed-vs-error report of the sun–planet contact model) use both cores.
 """
