@@ -32,7 +32,7 @@ import numpy as np
 from tca.errors import InputError
 from tca.gear import Gear
 
-from .grading import SizeField, count, distribute, uniform
+from .grading import MinField, SizeField, count, distribute, uniform
 from .hexmesh import HEX_FACES, HexMesh, ReferencePoint
 from .quality import check_quality
 from .topology import SectionTopology
@@ -274,10 +274,15 @@ def _member(geom: ToothGeometry, teeth: list[int], plans: list[ToothPlan], z: np
 
 
 def mesh_gear(gear: Gear, opts: MeshOptions = MeshOptions(), centre: int = 0, focus: Focus | None = None,
-              name: str | None = None, member_offset: float | None = None, check: bool = True) -> HexMesh:
+              name: str | None = None, member_offset: float | None = None, check: bool = True,
+              others: tuple = ()) -> HexMesh:
     """Hexahedral model of `opts.teeth` teeth of a gear centred on tooth `centre`, in the gear frame.
 
     `focus` (reference-tooth parameters) grades the mesh around the contact point of tooth `centre`.
+    `others`: ``(tooth, Focus)`` of further loaded teeth (neighbouring pairs that close under load),
+    graded like tooth `centre` around their own contact points; the axial levels, common to all teeth,
+    are graded around every focus (the smallest of the size fields, :class:`mesher.grading.MinField`).
+    Teeth not in the model are ignored. Needs `focus`.
     With ``opts.gap`` set the gear is double-helical: member a (this gear) at axial offset
     `member_offset` (default +(B + F)/2) and its mirror member b at the opposite offset.
     With `check` (default) an element with det J <= 0 at a Gauss point raises a GeometryError.
@@ -287,21 +292,35 @@ def mesh_gear(gear: Gear, opts: MeshOptions = MeshOptions(), centre: int = 0, fo
     teeth = model_teeth(gear, opts.teeth, centre)
     ci = teeth.index(centre % gear.teeth)
     B = gear.face_width
+    extra = [(int(j) % gear.teeth, f) for j, f in others if int(j) % gear.teeth in teeth and int(j) % gear.teeth != teeth[ci]]
+    if extra and focus is None:
+        raise InputError("others", [j for j, _ in extra], "further foci only with a focus on the centre tooth")
     if opts.gap is None:
-        members = [(gear, 0.0, focus)]
+        members = [(gear, 0.0, focus, extra)]
     else:
         c = 0.5 * (B + opts.gap) if member_offset is None else member_offset
         mirror = None if focus is None else replace(focus, z=-focus.z)
-        members = [(gear, c, focus), (replace(gear, hand=-gear.hand, name=gear.name), -c, mirror)]
+        members = [(gear, c, focus, extra),
+                   (replace(gear, hand=-gear.hand, name=gear.name), -c, mirror, [(j, replace(f, z=-f.z)) for j, f in extra])]
     pts_all, cells_all, faces_all = [], [], {}
     n0 = c0 = 0
     info = []
-    for mi, (gm, off, fc) in enumerate(members):
+    clamp = lambda z: min(max(z, -0.5 * B), 0.5 * B)  # noqa: E731
+    for mi, (gm, off, fc, ex) in enumerate(members):
         geom = ToothGeometry(gm, sz["rim"])
-        z_ref = 0.0 if fc is None else min(max(fc.z, -0.5 * B), 0.5 * B)
-        zf = SizeField(sz["coarse"]) if fc is None else SizeField(sz["coarse"], sz["axial"], z_ref + 0.5 * B, sz["growth"],
-                                                                  fc.extent_z)
+        z_ref = 0.0 if fc is None else clamp(fc.z)
+        if fc is None:
+            zf = SizeField(sz["coarse"])
+        else:
+            zf = SizeField(sz["coarse"], sz["axial"], z_ref + 0.5 * B, sz["growth"], fc.extent_z)
+            if ex:
+                zf = MinField((zf,) + tuple(SizeField(sz["coarse"], sz["axial"], clamp(f.z) + 0.5 * B, sz["growth"],
+                                                      f.extent_z) for _, f in ex))
         z = -0.5 * B + B * distribute(B, zf, nmin=2, pin=fc is not None)
+        for _, f in ex:  # each further focus on a level (unless the main one's node is the nearest)
+            k = int(np.argmin(np.abs(z - clamp(f.z))))
+            if abs(z[k] - z_ref) > 1e-12:
+                _pin(z, k, clamp(f.z))
         if fc is not None:
             _pin(z, int(np.argmin(np.abs(z - z_ref))), z_ref)
         rim_frac = uniform(count(sz["rim"], SizeField(sz["coarse"]), 2))
@@ -309,6 +328,8 @@ def mesh_gear(gear: Gear, opts: MeshOptions = MeshOptions(), centre: int = 0, fo
         plans = [plain] * len(teeth)
         if fc is not None:
             plans[ci] = plan_tooth(geom, sz, z_ref, fc, label="loaded")
+        for j, f in ex:
+            plans[teeth.index(j)] = plan_tooth(geom, sz, clamp(f.z), f, label="loaded")
         pts, cells, faces, topo = _member(geom, teeth, plans, z, rim_frac, off)
         pts_all.append(pts)
         cells_all.append(cells + n0)

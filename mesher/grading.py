@@ -23,7 +23,7 @@ import numpy as np
 
 from tca.errors import InputError
 
-__all__ = ["SizeField", "distribute", "count", "uniform"]
+__all__ = ["SizeField", "MinField", "distribute", "count", "uniform"]
 
 _SAMPLES = 2049
 
@@ -56,6 +56,25 @@ class SizeField:
         return np.minimum(self.h_max, self.h_focus + (self.growth - 1.0) * d)
 
 
+@dataclass(frozen=True)
+class MinField:
+    """The smallest of several size fields (several refined zones on one edge); ``focus`` and
+    ``h_focus`` are the first field's (the node :func:`distribute` pins)."""
+
+    fields: tuple
+
+    def __call__(self, x) -> np.ndarray:
+        return np.min([f(x) for f in self.fields], axis=0)
+
+    @property
+    def focus(self):
+        return self.fields[0].focus
+
+    @property
+    def h_focus(self):
+        return self.fields[0].h_focus
+
+
 def _cumulative(length: float, h: SizeField):
     x = np.linspace(0.0, length, _SAMPLES)
     w = 1.0 / h(x)
@@ -63,7 +82,7 @@ def _cumulative(length: float, h: SizeField):
     return x, F
 
 
-def count(length: float, h: SizeField, nmin: int = 1) -> int:
+def count(length: float, h: SizeField | MinField, nmin: int = 1) -> int:
     """Number of elements needed on an edge of `length` [mm] for sizes at most h(x)."""
     if not (length > 0):
         raise InputError("edge length", length, "> 0 mm")
@@ -76,7 +95,7 @@ def uniform(n: int) -> np.ndarray:
     return np.linspace(0.0, 1.0, n + 1)
 
 
-def distribute(length: float, h: SizeField, n: int | None = None, nmin: int = 1, pin: bool = False) -> np.ndarray:
+def distribute(length: float, h: SizeField | MinField, n: int | None = None, nmin: int = 1, pin: bool = False) -> np.ndarray:
     """Node fractions (n+1,) in [0, 1] of an edge of `length` [mm] graded by h; focus a node if `pin`."""
     if n is None:
         n = count(length, h, nmin)

@@ -18,7 +18,7 @@ from .newton import NewtonResult, newton
 from .pair import GearPair
 from .pair_result import ContactKind, ReferencePairSolution, TCAOptions, _flanks
 
-__all__ = ["bounded_pass"]
+__all__ = ["bounded_pass", "boundary_curve"]
 
 
 def bounded_pass(pair: GearPair, ref: "ReferencePairSolution", sel: np.ndarray, opts: TCAOptions) -> None:
@@ -57,6 +57,12 @@ def _u_of_radius(flank: PlacedFlank):
     rad = np.linalg.norm(h.profile(us)[0], axis=-1)
     order = np.argsort(rad)
     return lambda r: np.interp(r, rad[order], us[order])
+
+
+def boundary_curve(flank: PlacedFlank, b: int):
+    """Boundary b (1 tip, 2 z_max, 3 z_min) of a flank's working area: the range (t0, t1) of its parameter
+    (z for the tip, u for a face end) [mm] and the map t -> (u, v) (..., 2) on it."""
+    return _boundary_param(flank, b)
 
 
 def _boundary_param(flank: PlacedFlank, b: int):

@@ -43,6 +43,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
@@ -52,7 +53,7 @@ from .errors import GeometryError, InputError
 from .pair import GearPair
 from .pair_result import ContactKind, PairTCAResult
 
-__all__ = ["MeshTE", "MeshContact", "mesh_contact", "PathOfContact", "path_of_contact", "NAMED", "GRID",
+__all__ = ["MeshTE", "MeshContact", "NeighbourContact", "mesh_contact", "PathOfContact", "path_of_contact", "NAMED", "GRID",
            "POSITIONS", "grid_index", "path_angle", "position_angle", "TIE_MM"]
 
 TIE_MM = 1e-6  # separation [mm] below which two pairs' TEs are equal (conjugate flanks; far below the elastic approach)
@@ -144,6 +145,21 @@ class MeshTE:
 
 
 # ---------------------------------------------------------------------------------------------- contact at an angle
+class NeighbourContact(NamedTuple):
+    """Another pair of teeth at the angle of a :class:`MeshContact`: its branch ``k`` (teeth -k mod N),
+    the reference pair's parameters (u1, v1, u2, v2) [mm] at phi1 - k p1, its contact kind, and its TCA
+    separation [mm] from contact, (Δφ2 - Δφ2 of its branch) |arm 2| (the arm of the pair in contact).
+
+    Kind NONE: the extended surfaces touch outside a working area (beyond a tip or a face end); the
+    parameters are that point's and the separation is a lower bound of the real one (the pair can only
+    touch at the boundary nearest to it, e.g. a tip edge)."""
+
+    k: int
+    params: tuple
+    kind: int
+    gap: float
+
+
 @dataclass(frozen=True, eq=False)
 class MeshContact:
     """Contact of a meshing pair at an angle of its driving gear, in the pair frame."""
@@ -164,6 +180,7 @@ class MeshContact:
     next_gap: float = math.inf  # [mm] TCA separation of the next pair of teeth, (Δφ2 - Δφ2 of the next branch) |arm 2|
     slopes: dict = field(default_factory=dict)  # offset q -> dΔφ2/dφ1 of the pair q teeth on (branch k - q)
     tied: tuple = ()  # offsets q of other pairs in contact with a TE equal to this one's (within TIE_MM)
+    others: tuple = ()  # NeighbourContact of every other pair of teeth with a reference contact at this angle
 
     @property
     def ratio(self) -> float:
@@ -254,9 +271,22 @@ def mesh_contact(result: PairTCAResult, phi: float) -> MeshContact:
     x0, n0 = w1.r[0].copy(), w1.n[0].copy()
     arms = tuple(float(np.cross(x0 - m.origin, n0) @ m.axis) for m in (m1, m2))
     also = tuple(sorted(int(k - ks[c[2]]) for c in cands if c[2] != q))
+    others = []
+    solved = np.all(np.isfinite(ref.x), axis=1)  # a contact, or a tangency of the extended surfaces (kind NONE)
+    for j in range(len(ks)):
+        if j == q or not math.isfinite(val[j]):
+            continue
+        i0j, wj, _ = _grid_place(ref, phi, int(ks[j]), p1)
+        if not _usable(solved, i0j, wj):
+            continue
+        xj = (1 - wj) * ref.x[i0j] + wj * ref.x[i0j + 1] if wj > 0 else ref.x[i0j]
+        kj = int(ref.kind[i0j] if wj < 0.5 else ref.kind[i0j + 1])
+        others.append(NeighbourContact(int(ks[j]), tuple(float(v) for v in xj[:4]), kj,
+                                       (te - float(val[j])) * abs(arms[1])))
     return MeshContact(k, float(phi), float(phi2), te, tuple(float(v) for v in x[:4]), kind, x0, n0,
                        (float(lam[0, 0]), float(lam[0, 1])), float(ang[0]), exact, mte.slope(k, phi), arms,
-                       (te - te_next) * abs(arms[1]), {j: mte.slope(k - j, phi) for j in range(-4, 5)}, also)
+                       (te - te_next) * abs(arms[1]), {j: mte.slope(k - j, phi) for j in range(-4, 5)}, also,
+                       tuple(sorted(others, key=lambda o: o.gap)))
 
 
 # ---------------------------------------------------------------------------------------------- path of contact

@@ -74,8 +74,11 @@ class FlankCompliance:
     C: np.ndarray  # (m, m) global compliance [mm/N]
     info: dict
 
-    def locate(self, x: np.ndarray) -> "FlankPoints":
-        """Closest points on the flank faces of points x (p, 3) (gear frame): faces, weights, inside mask."""
+    def locate(self, x: np.ndarray, slack: float = 1e-9) -> "FlankPoints":
+        """Closest points on the flank faces of points x (p, 3) (gear frame): faces, weights, inside mask.
+
+        ``slack``: a point projecting up to this fraction of a face beyond the grid's border still counts
+        as inside (points on a boundary curve of the flank, which the faceted grid approximates)."""
         X = self.points[self.faces]
         centres = X.mean(1)
         k = min(8, len(self.faces))
@@ -83,7 +86,7 @@ class FlankCompliance:
         cand = cand.reshape(len(x), k)
         xs = np.repeat(x, k, axis=0)
         xi, eta, xp = project_to_faces(xs, X[cand.ravel()])
-        inside = (np.abs(xi) <= 1.0 + 1e-9) & (np.abs(eta) <= 1.0 + 1e-9)
+        inside = (np.abs(xi) <= 1.0 + slack) & (np.abs(eta) <= 1.0 + slack)
         d = np.where(inside, np.linalg.norm(xs - xp, axis=1), np.inf).reshape(len(x), k)
         best = np.argmin(d, axis=1)
         sel = np.arange(len(x)) * k + best

@@ -32,9 +32,20 @@ Solved by an active set (the bordered system on the active slices, dropping nega
 adding penetrating slices until neither happens), inside a fixed-point loop on the local
 compliance δ_loc(w_s)/F_s (logarithmic in w_s), until the loads change by less than 1e-7 of the
 total. Results: the elastic rotation -Δ (the driven gear lags: the loaded TE is Δφ2 - Δ), the load
-of each pair of teeth, the Hertz line-contact pressure p0_s = (w_s E / (2π (1 - ν²) R))^(1/2) along
-the lines, and the mesh stiffness k = ΣF / (Δ |m2_0|) [N/mm] (normal force over normal approach at
-the loaded pair's point).
+of each pair of teeth, the pressure along the lines, and the mesh stiffness k = ΣF / (Δ |m2_0|)
+[N/mm] (normal force over normal approach at the loaded pair's point).
+
+Pressure of a slice. In Hertz's elliptical contact (semi-axes a along the line, b across it) the
+load per unit length of the line is w(ξ) = (π/2) p(ξ) b(ξ) with p(ξ) = p0 (1 - ξ²/a²)^(1/2) and
+b(ξ) = b (1 - ξ²/a²)^(1/2), so p/b = p0/b =: κ along the whole line, a constant of the curvatures
+and the material alone (p0 and b both grow as P^(1/3)), and
+
+    p_s = (2 κ w_s / π)^(1/2),      κ = p0 / b of the pair's Hertz ellipse (:func:`hertz_kappa`,
+                                    Johnson 1985, Eqs. 4.39–4.40),
+
+which is exact for a Hertzian load distribution and becomes the line-contact value
+(w E* / (π R))^(1/2), κ = E* λ2 / 2, when λ1 → 0. (The line-contact value alone, which ignores the
+curvature λ1 along the line, is 7 % below the elliptical Hertz peak on the crowned pair.)
 """
 
 from __future__ import annotations
@@ -49,11 +60,14 @@ from tca.contact import PlacedFlank
 from tca.ellipse import contact_ellipse
 from tca.errors import ConvergenceError, GeometryError
 from tca.pair import GearPair
+from tca.pair_bounded import boundary_curve
+from tca.pair_result import ContactKind
 from tca.planetary_mesh import MeshTE
 
 from pipelines.ltca.compliance import flattening
+from pipelines.stress.sizing import hertz_contact
 
-__all__ = ["ContactLines", "contact_lines", "LoadedContact", "solve_contact"]
+__all__ = ["ContactLines", "contact_lines", "separation", "edge_slices", "hertz_kappa", "LoadedContact", "solve_contact"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -71,11 +85,14 @@ class ContactLines:
     gap: np.ndarray  # (S,) initial separation [mm]
     arm: np.ndarray  # (S,) |m2_s| [mm]
     radius: np.ndarray  # (S,) R = 1/λ2 [mm]
+    kappa: np.ndarray  # (S,) p0/b of the pair's Hertz ellipse [MPa/mm] (module docstring)
     depth: np.ndarray  # (S, 2) distance to the teeth's centre planes [mm]
-    ds: float  # slice length [mm]
+    ds: float  # slice length [mm] (nominal)
     W: np.ndarray  # (S, S) global compliance [mm/N]
     arm0: float  # arm of the loaded pair's TCA point [mm]
     dropped: tuple  # branches within reach but outside the modelled teeth
+    length: np.ndarray  # (S,) slice lengths [mm]
+    edge: np.ndarray  # (S,) boundary of an edge slice: 10 flank + boundary (1 tip, 2 z_max, 3 z_min); 0 on a line
 
 
 def _interp_params(mte: MeshTE, phi_ref: float):
@@ -103,8 +120,10 @@ def _rotz(a: float) -> np.ndarray:
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
-def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: float, reach: float) -> ContactLines:
-    """Slices of the pairs of teeth within ``reach`` [mm] at driver angle ``phi`` [rad] (module docstring)."""
+def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: float, reach: float,
+                  E: float, nu: float) -> ContactLines:
+    """Slices of the pairs of teeth within ``reach`` [mm] at driver angle ``phi`` [rad] (module docstring);
+    E [MPa] and ν for the pressure law of the slices."""
     fc1, fc2 = flanks
     val, ks = mte.branches(np.array([phi], float))
     val = val[0]
@@ -151,28 +170,39 @@ def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: fl
         if j1 not in fc1.teeth or j2 not in fc2.teeth:
             dropped.append(kk)
             continue
-        L = min(B, math.sqrt(2 * max(reach - gam * arm_c, 0.0) / l1) if l1 > 0 else B)
-        ns = int(math.ceil(L / ds))
-        xi = ds * np.arange(-ns, ns + 1)
-        xs = x0[None, :] + xi[:, None] * t[None, :]
-        arm = np.abs(np.einsum("ij,j->i", np.cross(xs - m2.origin, n), m2.axis))
-        g = gam * arm + 0.5 * max(l1, 0.0) * xi**2
+        ph2c = pair.ratio * phr + te  # the driven gear where the loaded pair touches
+        if _ref_kind(mte, phr) == ContactKind.SURFACE:  # a point of tangency inside both areas: the line through it
+            L = min(B, math.sqrt(2 * max(reach - gam * arm_c, 0.0) / l1) if l1 > 0 else B)
+            ns = int(math.ceil(L / ds))
+            xi = ds * np.arange(-ns, ns + 1)
+            xl = x0[None, :] + xi[:, None] * t[None, :]
+            xs, n_s, xs2, g, conv = separation(f1, f2, par, xl, phr, ph2c, gam * arm_c)
+            xs, xs2 = np.where(conv[:, None], xs, xl), np.where(conv[:, None], xs2, xl)
+            seg, edge = np.full(len(xi), ds), np.zeros(len(xi), int)
+        else:  # an edge contact, or a tangency beyond a boundary: the boundaries it lies on or beyond
+            xi, xs, xs2, n_s, g, conv, seg, edge = edge_slices(f1, f2, par, phr, ph2c, ds)
+            if not len(xi):
+                continue
+        arm = np.abs(np.einsum("ij,ij->i", np.cross(xs - m2.origin, n_s), np.broadcast_to(m2.axis, xs.shape)))
         # slice points in each model's gear frame, on the model tooth of this pair
         R1, _ = m1.rotation(phr)
-        R2, _ = m2.rotation(ph2)
+        R2, _ = m2.rotation(ph2c)
         xg1 = (xs - m1.origin) @ R1 @ _rotz(-d * p1).T
-        xg2 = (xs - m2.origin) @ R2 @ _rotz(-d * p2).T
-        loc1, loc2 = fc1.locate(xg1), fc2.locate(xg2)
-        ok = loc1.inside & loc2.inside & (g <= reach)
+        xg2 = (xs2 - m2.origin) @ R2 @ _rotz(-d * p2).T
+        # on the working areas (``conv``, exact); the flank grids' faces for the compliance (the faceted grid
+        # approximates the boundary curves: a face within EDGE_SLACK of a face size)
+        loc1, loc2 = fc1.locate(xg1, EDGE_SLACK), fc2.locate(xg2, EDGE_SLACK)
+        ok = conv & loc1.inside & loc2.inside & (g <= reach)
         if not ok.any():
             continue
         if kk == k:
-            arm0 = arm_c
+            arm0 = arm_c if not edge.any() else float(arm[ok][np.argmin(g[ok])])
         idx = len(branches)
         branches.append(kk)
         teeth.append((int((-kk) % N1), int((-kk) % N2)))
         rows.append((idx, xi[ok], xs[ok], g[ok], arm[ok], np.full(ok.sum(), 1.0 / l2),
-                     np.stack([loc1.depth[ok], loc2.depth[ok]], 1), loc1, loc2, ok))
+                     np.stack([loc1.depth[ok], loc2.depth[ok]], 1), loc1, loc2, ok,
+                     np.full(ok.sum(), hertz_kappa(l1, l2, E, nu)), seg[ok], edge[ok]))
     if not rows or branches[0] != k:
         raise GeometryError(f"{pair.gear1.name}-{pair.gear2.name}", "contact line",
                             f"the loaded pair at phi = {math.degrees(phi):.6f} deg is not on the modelled flanks")
@@ -183,7 +213,158 @@ def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: fl
     W = _project(A1, fc1.C) + _project(A2, fc2.C)
     W = 0.5 * (W + W.T)
     return ContactLines(float(phi), te, k, tuple(branches), tuple(teeth), pidx, cat(1), cat(2), cat(3), cat(4), cat(5),
-                        cat(6), float(ds), W, arm0, tuple(dropped))
+                        cat(10), cat(6), float(ds), W, arm0, tuple(dropped), cat(11), cat(12))
+
+
+def hertz_kappa(l1: float, l2: float, E: float, nu: float) -> float:
+    """p0 / b [MPa/mm] of the Hertz ellipse of relative curvatures λ1 <= λ2 [1/mm] (independent of the load);
+    E* λ2 / 2 for a line contact (λ1 <= 0)."""
+    line = E / (2.0 * (1.0 - nu**2)) * l2 / 2.0
+    if not l1 > 0:
+        return line
+    hz = hertz_contact((l1, l2), 1.0, E, nu, 1e12)
+    return line if hz.line else hz.p0 / hz.b
+
+
+def _ref_kind(mte: MeshTE, phi_ref: float) -> int:
+    """Contact kind of the reference pair at the grid node nearest phi_ref."""
+    ref = mte.result.reference
+    i = int(round((phi_ref - ref.phi1[0]) / mte.h))
+    return int(ref.kind[min(max(i, 0), len(ref.kind) - 1)])
+
+
+BOUNDARY_TOL = 1e-6  # [mm] a point this close to a boundary lies on it (an edge contact of the TCA)
+EDGE_SLACK = 0.25  # fraction of a grid face beyond the border within which a boundary point is on its flank grid
+
+
+def _foot(f: PlacedFlank, uv0, phi: float, x: np.ndarray, tol: float = 1e-10, maxit: int = 40):
+    """Foot points on flank f (at angle phi) of points x (S, 3), from (u, v) = uv0 mapped over the tangent
+    plane: (SurfacePoints, converged mask)."""
+    S = len(x)
+    w0, _, _ = f.world(np.array([uv0[0]]), np.array([uv0[1]]), np.array([phi]))
+    J0 = np.stack([w0.r_u[0], w0.r_v[0]], 1)
+    duv = np.linalg.lstsq(J0, (x - w0.r[0]).T, rcond=None)[0]
+    u, v = uv0[0] + duv[0], uv0[1] + duv[1]
+    ph = np.full(S, float(phi))
+    ok = np.zeros(S, bool)
+    for _ in range(maxit):
+        w, _, _ = f.world(u, v, ph)
+        d = x - w.r
+        a11, a12, a22 = (np.einsum("ij,ij->i", a, b) for a, b in ((w.r_u, w.r_u), (w.r_u, w.r_v), (w.r_v, w.r_v)))
+        b1, b2 = np.einsum("ij,ij->i", d, w.r_u), np.einsum("ij,ij->i", d, w.r_v)
+        det = a11 * a22 - a12 * a12
+        with np.errstate(all="ignore"):
+            du, dv = (a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det
+        du, dv = np.where(np.isfinite(du), du, 0.0), np.where(np.isfinite(dv), dv, 0.0)
+        u, v = u + du, v + dv
+        ok = np.abs(du) + np.abs(dv) < tol
+        if ok.all():
+            break
+    w, _, _ = f.world(u, v, ph)
+    return w, ok & np.all(np.isfinite(w.r), axis=1), np.stack([u, v], 1)
+
+
+def in_area(f: PlacedFlank, uv: np.ndarray, tol: float = BOUNDARY_TOL) -> np.ndarray:
+    """Points (u, v) (S, 2) [mm] of flank f inside its working area (within ``tol`` [mm] of it)."""
+    loc = f.surface.evaluate(uv[:, 0], uv[:, 1])
+    with np.errstate(invalid="ignore"):
+        return np.all(f.constraints(loc, uv[:, 0]) <= tol, axis=-1)
+
+
+def edge_slices(f1: PlacedFlank, f2: PlacedFlank, par, phi1: float, phi2: float, ds: float):
+    """Slices along the boundaries (tip, face ends) of both flanks, for a pair whose reference point
+    ``par`` (u1, v1, u2, v2) [mm] is an edge contact or a tangency of the extended surfaces outside a
+    working area: such a pair can touch only along a boundary (beyond a flank's form circle, along the
+    mating tip). Callers keep the pieces within reach and on both working areas.
+
+    Each boundary curve (:func:`tca.pair_bounded.boundary_curve`) at the flanks' angles phi1, phi2
+    [rad] is cut into pieces of arc length about ``ds`` [mm]; the separation of a piece's midpoint
+    is its distance from the other flank along that flank's normal (foot point by Gauss–Newton).
+    Returns xi (arc length along the boundary from its start: z_min for a tip, the form circle for a face
+    end), gear-1 and gear-2 points (S, 3), the unit
+    normal out of gear 1's tooth, separations [mm], converged mask, piece lengths [mm] and the
+    boundary code 10 flank + boundary.
+    """
+    out = []
+    sides = ((1, f1, f2, phi1, phi2, par[0:2], par[2:4]), (2, f2, f1, phi2, phi1, par[2:4], par[0:2]))
+    for which, f, g, ph_f, ph_g, uv, uvg in sides:
+        for b in (1, 2, 3):
+            (t0, t1), tmap = boundary_curve(f, b)
+            uvb = tmap(np.linspace(t0, t1, 401))
+            wb, _, _ = f.world(uvb[:, 0], uvb[:, 1], np.full(len(uvb), ph_f))
+            s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(wb.r, axis=0), axis=1))])
+            n = max(1, int(round(s[-1] / ds)))
+            sm = (np.arange(n) + 0.5) * s[-1] / n
+            tm = np.interp(sm, s, np.linspace(t0, t1, 401))
+            uvm = tmap(tm)
+            we, _, _ = f.world(uvm[:, 0], uvm[:, 1], np.full(n, ph_f))
+            wg, ok, uvf = _foot(g, uvg, ph_g, we.r)
+            ok &= in_area(g, uvf)  # the foot point on the other flank's working area
+            gap = np.einsum("ij,ij->i", we.r - wg.r, wg.n)
+            if which == 1:
+                x1, x2, nrm = we.r, wg.r, -wg.n
+            else:
+                x1, x2, nrm = wg.r, we.r, wg.n
+            out.append((sm, x1, x2, nrm, gap, ok, np.full(n, s[-1] / n), np.full(n, 10 * which + b)))
+    if not out:
+        e = np.zeros((0, 3))
+        return np.zeros(0), e, e, e, np.zeros(0), np.zeros(0, bool), np.zeros(0), np.zeros(0, int)
+    return tuple(np.concatenate([o[j] for o in out]) for j in range(8))
+
+
+def separation(f1: PlacedFlank, f2: PlacedFlank, par, x, phi1: float, phi2: float, gap0: float, tol: float = 1e-10,
+               maxit: int = 30):
+    """Exact separation of two flanks along gear 1's normal at the points of gear 1's flank nearest x (S, 3).
+
+    Gear 1's flank at angle phi1, gear 2's at phi2 [rad]; ``par`` (u1, v1, u2, v2) [mm] a point near the
+    line (start of the iterations), ``gap0`` [mm] a starting separation. Foot points P1 on flank 1
+    (Gauss–Newton on (x - r1)·r1_u = (x - r1)·r1_v = 0), then the normal line P1 + s n1 meets flank 2
+    at P2 (Newton on r2(u2, v2) - P1 - s n1 = 0): s is the separation [mm] (> 0 apart). Returns P1,
+    n1, P2, s and the mask of points where both solves converged with both points inside their flanks'
+    working areas (:func:`in_area`).
+    """
+    S = len(x)
+    u = np.full(S, float(par[0]))
+    v = np.full(S, float(par[1]))
+    ph1 = np.full(S, float(phi1))
+    ok1 = np.zeros(S, bool)
+    for _ in range(maxit):
+        w, _, _ = f1.world(u, v, ph1)
+        d = x - w.r
+        a11, a12, a22 = (np.einsum("ij,ij->i", a, b) for a, b in ((w.r_u, w.r_u), (w.r_u, w.r_v), (w.r_v, w.r_v)))
+        b1, b2 = np.einsum("ij,ij->i", d, w.r_u), np.einsum("ij,ij->i", d, w.r_v)
+        det = a11 * a22 - a12 * a12
+        du, dv = (a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det
+        u, v = u + du, v + dv
+        ok1 = np.abs(du) + np.abs(dv) < tol
+        if ok1.all():
+            break
+    w1, _, _ = f1.world(u, v, ph1)
+    P1, n1 = w1.r, w1.n
+    u2 = np.full(S, float(par[2]))
+    v2 = np.full(S, float(par[3]))
+    sg = np.full(S, float(gap0))
+    ph2 = np.full(S, float(phi2))
+    # start: the foot points' offsets from the line's centre mapped onto flank 2's tangent plane
+    w2, _, _ = f2.world(u2[:1], v2[:1], ph2[:1])
+    J0 = np.stack([w2.r_u[0], w2.r_v[0]], 1)
+    duv = np.linalg.lstsq(J0, (P1 - P1[len(P1) // 2]).T, rcond=None)[0] if S > 1 else np.zeros((2, S))
+    u2, v2 = u2 + duv[0] - duv[0][S // 2], v2 + duv[1] - duv[1][S // 2]
+    ok2 = np.zeros(S, bool)
+    for _ in range(maxit):
+        w2, _, _ = f2.world(u2, v2, ph2)
+        res = w2.r - P1 - sg[:, None] * n1
+        J = np.stack([w2.r_u, w2.r_v, -n1], 2)  # (S, 3, 3)
+        with np.errstate(all="ignore"):
+            step = np.linalg.solve(J, -res[..., None])[..., 0]
+        step = np.where(np.isfinite(step), step, 0.0)
+        u2, v2, sg = u2 + step[:, 0], v2 + step[:, 1], sg + step[:, 2]
+        ok2 = np.abs(step).sum(1) < tol
+        if ok2.all():
+            break
+    w2, _, _ = f2.world(u2, v2, ph2)
+    inside = in_area(f1, np.stack([u, v], 1)) & in_area(f2, np.stack([u2, v2], 1))
+    return P1, n1, w2.r, sg, ok1 & ok2 & np.isfinite(sg) & inside
 
 
 def _stack(locs, oks, m):
@@ -204,7 +385,7 @@ class LoadedContact:
 
     F: np.ndarray  # (S,) slice loads [N]
     delta: float  # rigid rotation of the driven gear closing the gaps [rad] (> 0)
-    pressure: np.ndarray  # (S,) Hertz line-contact peak pressure p0 [MPa]
+    pressure: np.ndarray  # (S,) peak pressure of each slice (2 κ w / π)^(1/2) [MPa]
     pair_force: np.ndarray  # (pairs,) [N]
     stiffness: float  # mesh stiffness [N/mm]
     iterations: int
@@ -213,11 +394,11 @@ class LoadedContact:
 
 def _local(F, lines: ContactLines, E: float, nu: float, c: float, w_guess: float) -> np.ndarray:
     """Local compliance δ_loc(w_s) / F_s [mm/N] at the current loads (w_guess where F_s = 0)."""
-    w = np.where(F > 0, F / lines.ds, w_guess)
+    w = np.where(F > 0, F / lines.length, w_guess)
     Es = E / (2.0 * (1.0 - nu**2))
     b = np.sqrt(4.0 * w * lines.radius / (math.pi * Es))
     d = flattening(w, b, lines.depth[:, 0], E, nu, c) + flattening(w, b, lines.depth[:, 1], E, nu, c)
-    return d / (w * lines.ds)
+    return d / (w * lines.length)
 
 
 def _active_set(M, g, a, T, A0, maxit=200):
@@ -273,8 +454,8 @@ def solve_contact(lines: ContactLines, torque: float, E: float, nu: float, c: fl
             break
     else:
         raise ConvergenceError("ltca local compliance", "fixed point on the Hertzian flattening", change / F.sum(), maxit)
-    w = F / lines.ds
-    p0 = np.sqrt(w * E / (2 * math.pi * (1 - nu**2) * lines.radius))
+    w = F / lines.length
+    p0 = np.sqrt(2.0 * lines.kappa * w / math.pi)
     pf = np.bincount(lines.pair, weights=F, minlength=len(lines.branches))
     k = float(F.sum() / (delta * lines.arm0)) if delta > 0 else float("inf")
     return LoadedContact(F, delta, p0, pf, k, its, fp)

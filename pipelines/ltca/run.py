@@ -121,7 +121,7 @@ def solve_positions(model: LTCAModel, phis, torques, bar=None) -> tuple[list, li
     n = len(phis)
     for ip, phi in enumerate(phis):
         t0 = time.perf_counter()
-        L = contact_lines(case.pair, model.mte, float(phi), model.flanks, hu_hz_ds[2], model.opts.reach)
+        L = contact_lines(case.pair, model.mte, float(phi), model.flanks, hu_hz_ds[2], model.opts.reach, E, nu)
         t1 = time.perf_counter()
         t_lines += t1 - t0
         names = [_pair_name(model, t) for t in L.teeth]
@@ -142,7 +142,7 @@ def solve_positions(model: LTCAModel, phis, torques, bar=None) -> tuple[list, li
             for j in np.flatnonzero(s.F > 0):
                 prows.append({"phi1_deg": math.degrees(phi), "torque_nm": T * 1e-3, "pair": names[L.pair[j]],
                               "xi_mm": float(L.xi[j]), "x_mm": float(L.x[j, 0]), "y_mm": float(L.x[j, 1]),
-                              "z_mm": float(L.x[j, 2]), "force_n": float(s.F[j]), "line_load_n_per_mm": float(s.F[j] / L.ds),
+                              "z_mm": float(L.x[j, 2]), "force_n": float(s.F[j]), "line_load_n_per_mm": float(s.F[j] / L.length[j]),
                               "pressure_mpa": float(s.pressure[j])})
         if bar is not None:
             bar(ip + 1, n)

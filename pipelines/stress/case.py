@@ -84,6 +84,10 @@ class StressCase:
             path_angle(self.pair, pos, self.roll)  # a position off the path of contact fails here, before any work
 
 
+def _um(v: float | None) -> float | None:
+    return None if v is None else v * 1e-3
+
+
 def _read_mesh(t: Table | None) -> SizeRules:
     if t is None:
         return SizeRules()
@@ -99,6 +103,7 @@ def _read_mesh(t: Table | None) -> SizeRules:
         neighbour=t.get("neighbour_size_mm", float, None, **pos),
         growth=t.get("growth", float, 1.3, lo=1.05, hi=3.0),
         zone=t.get("zone", float, 1.2, lo=0.0, hi=5.0),
+        neighbour_reach=_um(t.get("neighbour_reach_um", float, None, lo=0.0, hi=1000.0)),
     )
     t.done()
     return r

@@ -25,7 +25,10 @@ and the section of :math:`T` teeth, in sizes relative to the module (:math:`\bar
 :math:`\bar h = h_c/m`, :math:`h_c` the contact size) is
 :math:`n_s = 155 + 33.7\,\bar c^{-2} + 7.5\,\bar h^{-1} + 37.6\,(T-1)\,\bar c^{-2}` (the coarse
 area of the loaded tooth and its rim, the grading towards the contact point, the other teeth),
-so :math:`N = n_z n_s`. The four coefficients are a least-squares fit to 20 real part meshes
+so :math:`N = n_z n_s`. With further foci (neighbouring pairs meshed like the loaded one,
+:mod:`pipelines.stress.scene`) the refined axial zones are the union of theirs (length :math:`U` in
+:math:`k` pieces: :math:`n_z = \min(F/h_a,\ U/h_a + 2k\ln(c/h_a)/\ln q + F/c)`) and each adds a
+grading term :math:`7.5\,\bar h^{-1}` to the section. The four coefficients are a least-squares fit to 20 real part meshes
 (Table 1.1 sun and planet, refine 0.5-3, one, three and five teeth, contact sizes 0.015-0.16 mm):
 within -7 % / +15 % of the mesher's counts (``make bench``, area ``reliability``, checks it).
 DOF = 3 x 1.15 N (nodes per element of these meshes). Peak memory of the
@@ -113,19 +116,46 @@ def _count(L: float, h: float, c: float, ext: float, q: float) -> float:
     return min(L / h, 2 * ext / h + 2 * math.log(c / h) / math.log(max(q, 1.01)) + L / c)
 
 
-def part_elements(gear, sizes: dict, teeth: int, extent_z: float = 0.0) -> float:
-    """Elements of one part's mesh (module docstring) from its sizes [mm] (keys coarse, contact, axial, growth)."""
+def _union(intervals: list) -> tuple[float, int]:
+    """Total length and number of the disjoint pieces of a union of intervals (lo, hi)."""
+    total, pieces, end = 0.0, 0, -math.inf
+    for lo, hi in sorted(intervals):
+        if lo > end:
+            pieces += 1
+            total += hi - lo
+        elif hi > end:
+            total += hi - end
+        end = max(end, hi)
+    return total, pieces
+
+
+def part_elements(gear, sizes: dict, teeth: int, extent_z: float = 0.0, zones: tuple = ()) -> float:
+    """Elements of one part's mesh (module docstring) from its sizes [mm] (keys coarse, contact, axial, growth).
+
+    ``zones``: (z, extent_z) [mm] of every focus when there are several (refined neighbouring teeth): the
+    refined axial zones are their union, and each further focus adds a graded tooth section."""
     a, b, c_, d = _SECTION
     m, c = gear.module, sizes["coarse"]
-    nz = _count(gear.face_width, min(sizes["axial"], c), c, extent_z, sizes["growth"])
+    h, q, F = min(sizes["axial"], c), sizes["growth"], gear.face_width
+    if len(zones) > 1:
+        U, pieces = _union([(z - e, z + e) for z, e in zones])
+        nz = min(F / h, U / h + pieces * 2 * math.log(c / h) / math.log(max(q, 1.01)) + F / c)
+    else:
+        nz = _count(F, h, c, extent_z, q)
     cbar, hbar = c / m, min(sizes["contact"], c) / m
-    return nz * (a + b / cbar**2 + c_ / hbar + d * (teeth - 1) / cbar**2)
+    extra = max(len(zones) - 1, 0)
+    return nz * (a + b / cbar**2 + (1 + extra) * c_ / hbar + d * (teeth - 1) / cbar**2)
 
 
 def estimate_resources(scene: Scene) -> ResourceEstimate:
     """Element, DOF and memory estimate of the scene's model from its size rules (no meshing)."""
-    n = sum(part_elements(p.gear, dataclasses.asdict(p.sizes), p.sizes.teeth, getattr(p.focus, "extent_z", 0.0))
-            for p in scene.parts)
+    def zones(p):
+        teeth = set(p.teeth)
+        fs = [p.focus] + [f for j, f in p.others if j in teeth and j != p.centre % p.gear.teeth]
+        return tuple((f.z, f.extent_z) for f in fs) if len(fs) > 1 else ()
+
+    n = sum(part_elements(p.gear, dataclasses.asdict(p.sizes), p.sizes.teeth, getattr(p.focus, "extent_z", 0.0),
+                          zones(p)) for p in scene.parts)
     dofs = 3.0 * _NODES_PER_ELEMENT * n
     return ResourceEstimate(int(n), int(dofs), float(_MEM_GB_REF * (dofs / _DOF_REF) ** _MEM_EXP))
 
@@ -183,7 +213,7 @@ def mesh_scene(scene: Scene) -> HexMesh:
         opts = MeshOptions(teeth=s.teeth, rim_depth=s.rim, coarse_size=s.coarse, contact_size=s.contact,
                            fillet_size=s.fillet, growth=s.growth, axial_contact_size=s.axial,
                            neighbour_size=s.neighbour)
-        m = mesh_gear(p.gear, opts, centre=p.centre, focus=p.focus).transformed(p.R, p.t)
+        m = mesh_gear(p.gear, opts, centre=p.centre, focus=p.focus, others=p.others).transformed(p.R, p.t)
         bodies.setdefault(p.body, []).append((p, m))
     refs = {b: rb.ref for b, rb in scene.rigid.items()}
     meshes = []

@@ -89,6 +89,7 @@ class Part:
     sizes: ContactSizes
     R: np.ndarray
     t: np.ndarray
+    others: tuple = ()  # (tooth, Focus) of neighbouring pairs within reach, meshed like the loaded tooth
 
     def set(self, name: str) -> str:
         """Full name of one of the part's sets, e.g. 'tooth3/flank_pos'."""
@@ -209,12 +210,22 @@ def pair_scene(pair: GearPair, result: PairTCAResult, phi1: float, torque: float
     frame = (np.eye(3), np.zeros(3))
     itf = _interface(f"{g1.name}-{g2.name}", "a", pair, c, torque, rules, E, nu, frame, (g1.name, g2.name), ("", ""),
                      "driven")
+    reach = rules.reach(_load(pair, c, torque), min(g1.face_width, g2.face_width))
+    near = [o for o in c.others if o.gap <= reach]
+    if near:  # neighbouring pairs that may close under load: refined around their own contact points
+        fd, fn = itf.driver.focus, itf.driven.focus
+        d = replace(itf.driver, others=tuple(((-o.k) % g1.teeth, replace(fd, u=o.params[0], z=o.params[1])) for o in near))
+        n = replace(itf.driven, others=tuple(((-o.k) % g2.teeth, replace(fn, u=o.params[2], z=o.params[3])) for o in near))
+        itf = replace(itf, driver=d, driven=n)
     m1, m2 = pair.mounts()
     ratio = g1.teeth / g2.teeth
     info = {"phi1_deg": math.degrees(phi1), "phi2_deg": math.degrees(c.phi2), "te_arcsec": c.te / ARCSEC,
             "active_pair": c.k, "kind": _kind_name(c.kind), "on_tca_grid": c.exact,
             "instantaneous_ratio": c.ratio, "te_slope": c.slope, "next_pair_gap_um": c.next_gap * 1e3,
-            "loaded_teeth": {g1.name: itf.driver.centre, g2.name: itf.driven.centre}}
+            "loaded_teeth": {g1.name: itf.driver.centre, g2.name: itf.driven.centre},
+            "neighbour_reach_um": reach * 1e3,
+            "refined_neighbours": [{"pair": [(-o.k) % g1.teeth, (-o.k) % g2.teeth], "gap_um": o.gap * 1e3,
+                                    "kind": _kind_name(o.kind)} for o in near]}
     return Scene("pair", (itf.driver, itf.driven), (itf,), g1.name,
                  {g2.name: RigidBody(ReferencePoint(tuple(m2.origin), tuple(m2.axis)), -abs(torque))},
                  Reaction(g1.name, tuple(m1.origin), tuple(m1.axis), abs(torque) * ratio), ratio, info)

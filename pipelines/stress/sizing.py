@@ -82,6 +82,9 @@ def hertz_contact(lam: tuple, load: float, E: float, nu: float, length: float) -
 NEIGHBOUR = 0.1  # default profile size on the other teeth's loaded flanks [module] (converged load share, see README)
 
 
+C_PRIME = 14.0  # [N/(mm um)] single stiffness of a solid spur pair, ISO 6336-1 (order of magnitude of c')
+
+
 @dataclass(frozen=True)
 class SizeRules:
     """Element sizes of the models [mm, or multiples of the module m]; every size is divided by ``refine``.
@@ -104,6 +107,7 @@ class SizeRules:
     neighbour: float | None = None
     growth: float = 1.3
     zone: float = 1.2
+    neighbour_reach: float | None = None  # [mm] neighbouring pairs closer than this (TCA) get a focus; None: reach()
 
     def __post_init__(self):
         if not (0.1 <= self.refine <= 10.0):
@@ -118,6 +122,21 @@ class SizeRules:
             raise InputError("mesh.growth", self.growth, "in [1.05, 3]")
         if not (0.0 <= self.zone <= 5.0):
             raise InputError("mesh.zone", self.zone, "in [0, 5] (zone half-lengths over the Hertz ellipse's)")
+        if self.neighbour_reach is not None and not (0.0 <= self.neighbour_reach <= 1.0):
+            raise InputError("mesh.neighbour_reach_um", self.neighbour_reach * 1e3, "in [0, 1000] um")
+
+    def reach(self, load: float, face_width: float) -> float:
+        r"""Separation [mm] below which a neighbouring pair of teeth is meshed like the loaded one.
+
+        ``neighbour_reach`` if set, else three times the approach of a pair under the whole normal load
+        P [N] estimated with ISO 6336-1's single stiffness :math:`c' = 14` N/(mm µm) over the face width
+        b [mm]: :math:`3P/(c' b)`. A pair within it may close under load and carry part of it; a
+        localized (crowned) contact is more compliant than the full-face line contact c′ describes,
+        hence the factor (the crowned pair of docs/ltca.md approaches by about twice P/(c′b)).
+        """
+        if self.neighbour_reach is not None:
+            return self.neighbour_reach
+        return 3.0 * load / (C_PRIME * 1e3 * face_width)
 
 
 @dataclass(frozen=True)
