@@ -38,10 +38,12 @@ Load at the outer point of single pair tooth contact of the virtual spur gear (m
     \frac{h_{Fe}}{m_n} = \frac12\Big[(\cos\gamma_e - \sin\gamma_e\tan\alpha_{Fen})\frac{d_{en}}{m_n}
     - z_n\cos\Big(\frac{\pi}{3}-\vartheta\Big) - \frac{G}{\cos\vartheta} + \frac{\rho_{fP}}{m_n}\Big] \quad (E9).
 
-Internal gears (ISO 6336-3 method B for internal gears; the same substitute-rack equations appear in
-DIN 3990-3 Annex D): the tooth of the internal gear is taken as the tooth of a rack, the substitute basic
+Internal gears: ISO 6336-3 takes the tooth of an internal gear as the tooth of a rack, the substitute basic
 rack, whose root rounding ρ_fP2 and dedendum h_fP2 are those of the tool that cut the gear (here the
-generating rack: h_fP2 = tool_addendum m_n, ρ_fP2 = tool_tip_radius m_n). On a straight-flanked rack the 30°
+generating rack: h_fP2 = tool_addendum m_n, ρ_fP2 = tool_tip_radius m_n). The equations below are that rack's
+geometry, derived here; (I1), (I3) and the load angle of (I4) equal DIN 3990-11:1989 Annex D, Eqs. D.5.05,
+D.5.11, D.5.15 for internal gears (checked against an open-source implementation of that annex to 1e-9:
+tests/tca/test_iso6336.py; the text of ISO 6336-3's clause was not available to this project). On a straight-flanked rack the 30°
 tangent lies on the root rounding, ϑ = π/6 exactly, and no fixed point is needed. With the virtual internal
 gear's diameters as magnitudes (:math:`d_{fn} = d_n + d_f - d` its root, :math:`d_{an} = d_n + d_a - d` its tip,
 :math:`d_a < d < d_f`), the outer point of single contact lies one base pitch less than the path length from
@@ -65,10 +67,11 @@ the tip contact, now toward larger radii:
 :math:`\pi m_n/4 + h_{fP2}\tan\alpha_n + \rho_{fP2}(1-\sin\alpha_n)/\cos\alpha_n` from the centre line, the
 tangent point :math:`\rho_{fP2}\cos 30°` nearer); (I3) is the height over the critical section
 (:math:`\rho_{fP2}/2` above the root line) of the point where the load line, normal to the straight flank,
-crosses the centre line, the flank's half-thickness at the load point being the bracket. DIN 3990-3 takes
-:math:`\rho_{F2} = \rho_{fP2}/2` as a conservative rule; (I4) keeps the substitute rack's own rounding, the
+crosses the centre line, the flank's half-thickness at the load point being the bracket. DIN 3990-11 (D.5.16) takes
+:math:`\rho_{F2} = \rho_{fP2}/2`; (I4) keeps the substitute rack's own rounding, the
 limit of the generated fillet (the rack-generated ring's fillet radius tends to ρ_fP2 as 1/z:
-tests/tca/test_iso6336.py). The internal gear's own tooth is thicker at the root than the substitute rack's
+tests/tca/test_iso6336.py), and DIN's halved radius would put q_s = s_Fn / (2 ρ_F) near 9.6, outside the
+range 1 <= q_s < 8 of Y_S (F2) for the standard rack. The internal gear's own tooth is thicker at the root than the substitute rack's
 (the flanks of an internal tooth diverge toward the root faster than a rack's), so (I1)-(I3) are conservative
 for rings of few teeth.
 

@@ -7,7 +7,8 @@ same two numbers: the fillet point whose tangent makes 30° with the tooth centr
 values: no published Y_F / Y_S for given gear data (ISO/TR 6336-30, DIN 3990 examples, textbooks) was
 available to this project's sources (docs/standard_gears.md says what was searched). They are checked
 through the quantities they are built from, their trends, the rack limit that the external (E1)-(E9) and
-internal (I1)-(I4) equations share, and the FE root stress (tests/pipelines/test_standard_gears.py,
+internal (I1)-(I4) equations share, another implementation of the same equations with the load at the tip
+(DIN 3990-11 Annex D, hanslhansl/din3990), and the FE root stress (tests/pipelines/test_standard_gears.py,
 tests/pipelines/test_internal_root.py).
 """
 
@@ -130,3 +131,44 @@ def test_internal_gear_factors_follow_the_substitute_rack():
         assert root_factors(Gear("r", 60, m, a, 14.0, internal=True, profile_shift=x), 1.6).s_fn == pytest.approx(rf.s_fn)
     yf = [root_factors(Gear("r", z, m, a, 14.0, internal=True), 1.6).y_f for z in (40, 60, 120)]
     assert yf[0] > yf[1] > yf[2]
+
+
+# Another implementation: hanslhansl/din3990 (GitHub, commit 5024995, din3990/din3990_11.py), DIN 3990-11:1989
+# Annex D, Eqs. D.5.01-D.5.16 (s_Fn, h_Fa, ρ_F, α_Fan, Y_Fa) and D.4.01 (Y_Sa), for the load at the tooth tip.
+# Method B with ε_α = 1 puts the load at the tip (d_en = d_an), so the two must agree. Inputs: m = 4.5 mm,
+# α = 20°, h_fP = 1.25 m, ρ_fP = 0.25 m, s_pr = 0, spur; d_a, d_f as this project generates them (internal gears
+# in DIN's sign convention, z and diameters negative). Run 2026-11-24; these are that code's outputs, not
+# published worked values (none was found, see the module docstring).
+#                 (s_Fn [mm], h_Fa [mm], ρ_F [mm], α_Fan [deg], Y_Fa), Y_Sa
+DIN3990_EXTERNAL = {
+    (19, 0.0): ((8.56460114, 8.736631316, 2.250604782, 29.88811259, 2.967063537), 1.59065431),
+    (24, 0.0): ((8.957312499, 8.723787236, 2.177641666, 28.26427181, 2.751639029), 1.64345157),
+    (16, 0.2): ((8.84994693, 8.953888965, 1.945859295, 33.42052733, 2.741656388), 1.67584725),
+    (40, -0.2): ((9.260524366, 8.649224578, 2.29557632, 24.27536341, 2.641671547), 1.65036310),
+}
+DIN3990_INTERNAL = {  # (z, x, h_a / m); DIN's Y_Sa is undefined here: its ρ_F = ρ_fP/2 gives q_s = 9.6 >= 8
+    (72, 0.0, 1.0): (10.79015841, 8.872257501, 0.5625, 20.0, 2.057511451),
+    (72, 0.5, 0.3): (10.79015841, 5.304963357, 0.5625, 20.0, 1.230241892),
+}
+
+
+@pytest.mark.parametrize("z, x", sorted(DIN3990_EXTERNAL))
+def test_external_factors_at_the_tip_match_din_3990_11_as_implemented_elsewhere(z, x):
+    (s_fn, h_fa, rho_f, a_fan, y_fa), y_sa = DIN3990_EXTERNAL[(z, x)]
+    rf = root_factors(Gear("g", z, 4.5, math.radians(20), 14.0, profile_shift=x), 1.0)
+    # that code stops the fixed point for ϑ after 5 iterations (ours converges to 1e-12 and matches the generated
+    # fillet to 1e-5): measured 1.1e-3 on s_Fn, 2.1e-3 on Y_Fa; h_Fa, ρ_F within 1.5e-4, α_Fan exact
+    assert rf.s_fn == pytest.approx(s_fn, rel=2e-3)
+    assert rf.h_fe == pytest.approx(h_fa, rel=3e-4) and rf.rho_f == pytest.approx(rho_f, rel=3e-4)
+    assert math.degrees(rf.alpha_fen) == pytest.approx(a_fan, rel=1e-9)
+    assert rf.y_f == pytest.approx(y_fa, rel=4e-3) and rf.y_s == pytest.approx(y_sa, rel=2e-3)
+
+
+@pytest.mark.parametrize("z, x, ha", sorted(DIN3990_INTERNAL))
+def test_internal_factors_at_the_tip_match_din_3990_11_as_implemented_elsewhere(z, x, ha):
+    """(I1)-(I4) against DIN 3990-11 D.5.05 / D.5.11 / D.5.15 / D.5.16: equal, except ρ_F (DIN halves ρ_fP)."""
+    s_fn, h_fa, rho_f, a_fan, y_fa = DIN3990_INTERNAL[(z, x, ha)]
+    rf = root_factors(Gear("r", z, 4.5, math.radians(20), 14.0, internal=True, profile_shift=x, addendum=ha), 1.0)
+    assert rf.s_fn == pytest.approx(s_fn, rel=1e-9) and rf.h_fe == pytest.approx(h_fa, rel=1e-9)
+    assert math.degrees(rf.alpha_fen) == pytest.approx(a_fan, rel=1e-9) and rf.y_f == pytest.approx(y_fa, rel=1e-9)
+    assert rf.rho_f == pytest.approx(2 * rho_f, rel=1e-12)  # (I4) keeps the substitute rack's own rounding
