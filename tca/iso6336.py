@@ -265,5 +265,5 @@ def method(gear: Gear) -> str:
     """Which variant of method B :func:`root_factors` applies to ``gear`` (a sentence for summaries)."""
     kind = "internal gear, substitute rack (I1)-(I4)" if gear.internal else "external gear (E1)-(E9)"
     if gear.parabola_pos or gear.parabola_neg:
-        kind += ", parabolic rack: tip rounding centre moved by its parabola (Δη in E)"
+        kind += ", parabolic rack: its tip-rounding centre moved by Δη"
     return kind

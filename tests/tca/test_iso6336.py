@@ -172,3 +172,14 @@ def test_internal_factors_at_the_tip_match_din_3990_11_as_implemented_elsewhere(
     assert rf.s_fn == pytest.approx(s_fn, rel=1e-9) and rf.h_fe == pytest.approx(h_fa, rel=1e-9)
     assert math.degrees(rf.alpha_fen) == pytest.approx(a_fan, rel=1e-9) and rf.y_f == pytest.approx(y_fa, rel=1e-9)
     assert rf.rho_f == pytest.approx(2 * rho_f, rel=1e-12)  # (I4) keeps the substitute rack's own rounding
+
+
+@pytest.mark.parametrize("a_c", [0.002, 0.008])
+def test_parabolic_rack_thins_the_internal_chord_as_it_thins_the_generated_ring(a_c):
+    """(I1) with Δη: the crowned rack's change of the chord equals the generated ring's (z = 2000, rack limit)."""
+    plain = Gear("r", 2000, 4.5, math.radians(20), 14.0, internal=True)
+    crowned = Gear("r", 2000, 4.5, math.radians(20), 14.0, internal=True, parabola_pos=a_c, parabola_neg=a_c)
+    d_iso = root_factors(crowned, 1.6).s_fn - root_factors(plain, 1.6).s_fn
+    d_gen = _generated(crowned)[0] - _generated(plain)[0]
+    assert d_iso < 0
+    assert d_iso == pytest.approx(d_gen, abs=2e-3)  # mm; both chords carry the same 1/z offset (0.03 mm)
