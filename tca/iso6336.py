@@ -114,7 +114,7 @@ class RootFactors:
     h_fe: float  # bending moment arm for the load at the outer point of single contact [mm]
     alpha_fen: float  # load direction angle [rad]
     d_en: float  # diameter of the outer point of single contact of the virtual gear [mm]
-    theta: float  # the auxiliary angle ϑ of eq. (22) [rad]
+    theta: float  # the auxiliary angle ϑ of (E4); π/6 for internal gears [rad]
     y_f: float  # form factor
     y_s: float  # stress correction factor
 
@@ -150,9 +150,10 @@ def root_factors(gear: Gear, eps_alpha: float) -> RootFactors:
 
     ``eps_alpha``: transverse contact ratio of the pair. The basic rack is the gear's generating rack:
     h_fP = tool_addendum m_n, ρ_fP = tool_tip_radius m_n. External gears: Eqs. (E1)-(E9) of the module
-    docstring; internal gears: the substitute rack, Eqs. (I1)-(I4). A parabolic (profile-crowned) rack is
-    taken as its straight basic rack (its tip rounding cuts the same fillet within the deviation measured in
-    tests/tca/test_iso6336.py).
+    docstring; internal gears: the substitute rack, Eqs. (I1)-(I4). A parabolic (profile-crowned) rack moves
+    its tip-rounding centre by Δη (module docstring): the fillet and the critical section are then exact; the
+    load point and the arm keep the unmodified tooth's thickness (the parabola thins it by a_c u² there, u the
+    rack flank parameter from the pitch point: about 0.03 mm per flank on the report's planet, a_c = 0.008).
     """
     _check(gear, eps_alpha)
     if gear.internal:
