@@ -8,6 +8,9 @@
    teeth (two pairs in the double-contact zones, one at the pitch point) and the loaded TE.
 4. The helical pair (pipelines/cases/stress_helical_pair.toml) as shipped: time, force balance and the
    load shared by the pairs of teeth on their inclined contact lines.
+5. ISO 6336-3 for an internal pair (pipelines/cases/stress_internal_pair.toml, 24/72, one tooth per gear):
+   the ring's fillet maximum principal stress at its HPSTC (the pinion's LPSTC) at refine 0.5, 1, 2 with
+   Richardson's extrapolation, against the substitute-rack sigma_F0; the pinion's at its own HPSTC.
 
 Run: ``.venv/bin/python -m pipelines.bench.standard --out out/bench/standard``.
 """
@@ -22,7 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tca.iso6336 import root_factors
+from tca.iso6336 import root_factors, tooth_root
 from tca.pair_te import path_of_contact
 
 from pipelines.cases.reader import CASES_DIR, load_case
@@ -107,9 +110,38 @@ def main(argv=None) -> int:
           f"- total normal force {s['contact_force_n']:.1f} N against T2 / (r_b2 cos β_b) = {hc.torque / g.r_b / math.cos(beta_b):.1f} N",
           "- load shares by pair offset: " + ", ".join(f"{q:+d}: {v:.3f}" for q, v in sh),
           f"- peak contact pressure {s['max_contact_pressure_mpa']:.0f} MPa (FE edge contact: {s['fe_edge_contact']})"]
+    L += _internal(out)
     (out / "standard.md").write_text("\n".join(L) + "\n")
     print("\n".join(L))
     return 0
+
+
+def _internal(out: Path) -> list[str]:
+    """Section 5: the internal pair's root stresses against ISO 6336-3 (substitute rack for the ring)."""
+    base = read_stress_case(load_case(CASES_DIR / "stress_internal_pair.toml"))
+    pinion, ring = base.pair.gear1, base.pair.gear2
+    eps = path_of_contact(base.pair).contact_ratio
+    L = ["", f"## 5. Internal pair 24/72 (stress_internal_pair.toml), one tooth per gear, eps_alpha = {eps:.3f}", "",
+         "| gear | position | refine | DOF | FE max principal [MPa] | sigma_F0 [MPa] | FE / ISO - 1 |", "|---|---|---|---|---|---|---|"]
+    rows = []
+    for gear, pos, fset, refine in [(ring, "lpstc", "ring/tooth0/fillet_neg", r) for r in (0.5, 1.0, 2.0)] + \
+                                    [(pinion, "hpstc", "pinion/tooth0/fillet_pos", 1.0)]:
+        c = replace(base, position=pos, mesh=replace(base.mesh, teeth=1, refine=refine))
+        run = run_stress(c, out / f"internal_{pos}_{refine:g}")
+        fe = run.result.fillet_stress()[fset]["max_principal_mpa"]
+        sig = run.summary["iso6336_sigma_f0_mpa"][gear.name]
+        rows.append(fe)
+        L.append(f"| {gear.name} | {pos} | {refine:g} | {run.summary['dofs']} | {fe:.1f} | {sig:.1f} | {fe / sig - 1:+.1%} |")
+    f1, f2, f3 = rows[:3]
+    sig_ring = tooth_root(base.pair, base.torque)[ring.name]["sigma_f0_mpa"]
+    if (f2 - f1) * (f3 - f2) > 0 and abs(f3 - f2) < abs(f2 - f1):
+        q = (f2 - f1) / (f3 - f2)
+        rich = f3 + (f3 - f2) / (q - 1)
+        L += ["", f"- ring, Richardson (refinement ratio 2, observed order {math.log2(q):.2f}): {rich:.1f} MPa, "
+                  f"{rich / sig_ring - 1:+.1%} against sigma_F0 = {sig_ring:.1f} MPa"]
+    else:
+        L += ["", "- ring: the three levels are not monotonically convergent; no extrapolation"]
+    return L
 
 
 if __name__ == "__main__":

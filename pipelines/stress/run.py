@@ -219,15 +219,16 @@ def _iso6336(case: StressCase) -> dict:
     """Pair model: ISO 6336-3 method B nominal root stress σ_F0 of both gears beside the FE fillet stress.
 
     σ_F0 assumes the whole load on one tooth at the HPSTC (no load factors); the FE fillet stress equals it only
-    where the model does too (``position = "hpstc"``, ``mesh.teeth = 1``). Internal gears and modified racks:
-    None.
+    where the model does too (``position = "hpstc"``, ``mesh.teeth = 1``; the driven gear's HPSTC is the driver's
+    ``"lpstc"``). External and internal gears, straight and parabolic racks (:mod:`tca.iso6336`); a gear where
+    method B does not apply (ε_α outside [1, 2)) is None, and ``iso6336.not_covered`` says why.
     """
     if case.model != "pair":
         return {}
     try:
         rec = tooth_root(case.pair, case.torque)
-    except InputError:
-        return {"iso6336_sigma_f0_mpa": None, "iso6336": None}
+    except InputError as e:
+        return {"iso6336_sigma_f0_mpa": None, "iso6336": {"not_covered": str(e)}}
     return {"iso6336_sigma_f0_mpa": {g.name: (rec[g.name] or {}).get("sigma_f0_mpa") for g in (case.pair.gear1, case.pair.gear2)},
             "iso6336": rec}
 
