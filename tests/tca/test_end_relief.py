@@ -15,6 +15,11 @@ import pytest
 from tca.end_relief import EndRelief
 from tca.errors import InputError
 from tca.gear import Gear
+from tca.pair import GearPair, Misalignment
+from tca.pair_relief import RIDGE_Z_MAX, RIDGE_Z_MIN
+from tca.pair_result import ContactKind
+from tca.pair_tca import TCAOptions, run_pair_tca
+from tca.units import ARCMIN, ARCSEC
 from tests.tca.test_surfaces import involute_angle
 
 d = math.radians
@@ -128,3 +133,51 @@ def test_bad_end_relief_names_key_value_and_range(kw, key):
     with pytest.raises(InputError) as e:
         replace(SPUR, end_relief=EndRelief(**kw))
     assert f"end_relief.{key}" in str(e.value)
+
+
+# ---------------------------------------------------------------------------------------------- pair TCA
+PINION, WHEEL = SPUR, Gear("w", 24, 4.5, d(20), 14.0)
+OPTS = TCAOptions(cycles=1, steps_per_cycle=10)
+
+
+def _pair(relief, face=14.0, dgamma_arcmin=0.0):
+    g1, g2 = (replace(g, face_width=face, end_relief=relief) for g in (PINION, WHEEL))
+    return GearPair(g1, g2, misalignment=Misalignment(d_gamma=dgamma_arcmin * ARCMIN))
+
+
+@pytest.mark.parametrize("power", [1, 2])
+def test_aligned_spur_pair_keeps_its_te_and_mid_face_contact(power):
+    """Aligned conjugate flanks: the relief is outside the contact line's middle, the TE stays zero."""
+    r = run_pair_tca(_pair(EndRelief(0.015, 4.0, power)), OPTS)
+    assert np.abs(r.te).max() < 1e-10  # conjugate involutes: TE = 0 (round-off of the Newton solves)
+    assert np.all(r.kind == ContactKind.SURFACE) and np.abs(r.point1[:, 2]).max() < 1e-9
+
+
+def test_linear_relief_moves_the_edge_contact_to_the_ridge():
+    """Δγ = 3': unrelieved, the contact runs to the face end (edge). With a linear relief steeper than the
+    misalignment the ridge z_s = b/2 - L touches first, exactly as the face edge of the same pair cut to
+    the face width 2 z_s (another code path: the bounded-surface edge search)."""
+    bare = run_pair_tca(_pair(None, dgamma_arcmin=3.0), OPTS)
+    assert set(np.abs(bare.point1[:, 2]).round(1)) == {7.0}  # regression pin: edge contact at the face end
+    rel = run_pair_tca(_pair(EndRelief(0.015, 4.0, 1), dgamma_arcmin=3.0), OPTS)
+    cut = run_pair_tca(_pair(None, face=6.0, dgamma_arcmin=3.0), OPTS)
+    assert np.abs(rel.te - cut.te).max() < 1e-7 * ARCSEC  # two converged solves (measured 1.3e-9 arcsec)
+    assert np.abs(np.abs(rel.point1[:, 2]) - 3.0).max() < 0.01
+    assert set(int(w) % 10 for w in rel.boundary) <= {RIDGE_Z_MAX, RIDGE_Z_MIN}
+    assert np.all(rel.te < bare.te)
+
+
+def test_parabolic_relief_contact_where_the_relief_slope_meets_the_misalignment():
+    """Δγ = 3', parabolic relief on both gears: the contact is a point of tangency inside the relieved zone
+    where the slope of the combined relief 2 C(z) equals the misalignment's gap slope a (from the TE of
+    the ridge contact of the cut pair, TE = a z_s): z* = z_s + a r_b2 L² / (4 C_I), TE = a z* - 2 C(z*) / r_b2."""
+    c_i, length, zs = 0.015, 4.0, 3.0
+    cut = run_pair_tca(_pair(None, face=6.0, dgamma_arcmin=3.0), OPTS)
+    a = cut.te / zs  # [rad/mm], TE proportional to the axial position of the contact
+    rel = run_pair_tca(_pair(EndRelief(c_i, length, 2), dgamma_arcmin=3.0), OPTS)
+    z_star = zs + a * WHEEL.r_b * length**2 / (4 * c_i)
+    te = a * z_star - 2 * c_i * ((z_star - zs) / length) ** 2 / WHEEL.r_b
+    assert np.all(rel.kind == ContactKind.SURFACE)
+    # the linear TE(z) of a misaligned spur pair holds to O(Δγ²): 1 % in position, 1e-3 in TE
+    assert np.abs(rel.point1[:, 2]) == pytest.approx(z_star, rel=0, abs=0.01 * (z_star - zs).max() + 2e-3)
+    assert rel.te == pytest.approx(te, rel=1e-3)
