@@ -181,3 +181,29 @@ def test_parabolic_relief_contact_where_the_relief_slope_meets_the_misalignment(
     # the linear TE(z) of a misaligned spur pair holds to O(Δγ²): 1 % in position, 1e-3 in TE
     assert np.abs(rel.point1[:, 2]) == pytest.approx(z_star, rel=0, abs=0.01 * (z_star - zs).max() + 2e-3)
     assert rel.te == pytest.approx(te, rel=1e-3)
+
+
+# ---------------------------------------------------------------------------------------------- mesh
+def test_mesh_nodes_follow_the_relieved_flank():
+    """Flank nodes of the hexahedral tooth lie on the relieved surface (1e-9 mm, parameter rounding) and
+    at the face ends off the unmodified one by C_I along the line of action."""
+    from mesher import MeshOptions, check_conformity, mesh_gear
+    from tests.mesher.test_conformity import _surface_distance
+
+    g = replace(SPUR, end_relief=EndRelief(0.015, 3.0, 1))
+    m = mesh_gear(g, MeshOptions(teeth=1))
+    check_conformity(m)
+    for side, key in ((1, "pos"), (-1, "neg")):
+        for piece in ("flank", "fillet"):
+            p = m.points[m.point_sets[f"{g.name}/tooth0/{piece}_{key}"]]
+            for surf, gap in ((g.surface(side, piece), None), (SPUR.surface(side, piece), 1)):
+                lo, hi = surf.u_range
+                samples = np.broadcast_to(np.linspace(lo, hi, 200), (len(p), 200))
+                grid = surf.points(samples, np.broadcast_to(p[:, 2:3], samples.shape))
+                guess = samples[0, np.argmin(np.linalg.norm(grid - p[:, None, :], axis=-1), axis=1)]
+                dist = _surface_distance(surf, p, guess)
+                if gap is None:
+                    assert dist.max() < 1e-9
+                elif piece == "flank":  # off the unmodified involute by C(z) (normal distance, spur: transverse)
+                    want = _relief_closed_form(p[:, 2], 14.0, 0.015, 3.0, 1)
+                    assert np.abs(dist - want).max() < 1e-6
