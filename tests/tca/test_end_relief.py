@@ -207,3 +207,13 @@ def test_mesh_nodes_follow_the_relieved_flank():
                 elif piece == "flank":  # off the unmodified involute by C(z) (normal distance, spur: transverse)
                     want = _relief_closed_form(p[:, 2], 14.0, 0.015, 3.0, 1)
                     assert np.abs(dist - want).max() < 1e-6
+
+
+def test_mesh_has_a_level_at_each_relief_start():
+    from mesher import MeshOptions, mesh_gear
+
+    g = replace(SPUR, end_relief=EndRelief(0.015, 3.3, 1, "both"))
+    m = mesh_gear(g, MeshOptions(teeth=1))
+    z = np.unique(np.round(m.points[:, 2], 12))
+    assert np.min(np.abs(z - 3.7)) < 1e-12 and np.min(np.abs(z + 3.7)) < 1e-12
+    assert np.all(np.diff(z) > 0.3)  # no sliver levels
