@@ -131,7 +131,11 @@ def relief_pass(pair: GearPair, ref: ReferencePairSolution, opts: TCAOptions, le
     ph2g = ratio * phi1 + te_guess[sel]
     cands = {fl: _candidates(f1, f2, fl, phi1, ph2g, opts, levels, samples) for fl in relieved}
     top = np.max([c[0] for c in cands.values()], 0)
-    upd = np.flatnonzero(np.isfinite(top) & (top > ref.phi2[sel] + 1e-12))
+    # what the pair TCA knows: the contact found, or where it skipped the edge search, the tangency of
+    # the extended surfaces (an upper bound of the bounded contact; the relieved points lie on those
+    # surfaces, so a sample at or below it is no news, e.g. the ridge line crossing a line contact)
+    known = np.where(ref.tangency & (ref.kind == ContactKind.NONE), ref.x[:, 4], ref.phi2)[sel]
+    upd = np.flatnonzero(np.isfinite(top) & (top > known + 1e-12))
     done: dict[int, dict[int, np.ndarray]] = {fl: {} for fl in relieved}  # refined x per flank and position
     failed = []
     for q in upd:

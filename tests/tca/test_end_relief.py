@@ -12,6 +12,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from tca.crowning import DiskPlunge
 from tca.end_relief import EndRelief
 from tca.errors import InputError
 from tca.gear import Gear
@@ -217,3 +218,45 @@ def test_mesh_has_a_level_at_each_relief_start():
     z = np.unique(np.round(m.points[:, 2], 12))
     assert np.min(np.abs(z - 3.7)) < 1e-12 and np.min(np.abs(z + 3.7)) < 1e-12
     assert np.all(np.diff(z) > 0.3)  # no sliver levels
+
+
+def test_helical_pair_relief_touches_no_later_than_the_cut_pair():
+    """Helical pair (Table 1.1 sun / involute planet, b = 30 mm), Δγ = 3', linear relief 12 um / 5 mm: the
+    relieved pair holds the cut pair (b = 20 mm) plus the relieved zones, so it touches no later at every
+    position, and exactly as the cut pair where that touches with an edge against the other's middle part."""
+    sun = Gear("sun", 41, 2.0, d(20), 30.0, helix=d(10), hand=1)
+    planet = Gear("planet", 34, 2.0, d(20), 30.0, helix=d(10), hand=-1)
+    mis = Misalignment(d_gamma=3.0 * ARCMIN)
+    rel = EndRelief(0.012, 5.0, 1)
+    opts = TCAOptions(cycles=1, steps_per_cycle=12)
+    a = run_pair_tca(GearPair(replace(sun, end_relief=rel), replace(planet, end_relief=rel), misalignment=mis), opts)
+    b = run_pair_tca(GearPair(replace(sun, face_width=20.0), replace(planet, face_width=20.0), misalignment=mis), opts)
+    assert np.all(a.te >= b.te - 1e-7 * ARCSEC)
+    edge = np.isin(b.boundary, (12, 13, 22, 23))
+    assert edge.sum() >= len(b.te) // 2
+    assert np.abs(a.te[edge] - b.te[edge]).max() < 1e-7 * ARCSEC
+
+
+def test_relief_on_a_disk_crowned_flank_removes_material_with_exact_derivatives():
+    g0 = replace(HELICAL, plunge=DiskPlunge(100.0, 0.002))
+    g = replace(g0, end_relief=EndRelief(0.010, 6.0, 2))
+    ar = g0.area(1)
+    u = np.linspace(ar.u_form + 0.05, ar.u_tip, 5)
+    for side in (1, -1):
+        s0, s = g0.surface(side), g.surface(side)
+        for z in (0.0, 12.0, -14.0):
+            zz = np.full_like(u, z)
+            p0, p = s0.evaluate(u, zz), s.evaluate(u, zz)
+            c = _relief_closed_form(zz, 30.0, 0.010, 6.0, 2)
+            # the machine's rotation: removal along the outward normal close to C cos(beta_b) (not an involute:
+            # the crowned flank's normal turns off the line of action along the face; measured 0.94..1.011)
+            dn = -np.einsum("ij,ij->i", p.r - p0.r, p0.n)
+            bb = math.atan(math.tan(g0.helix) * g0.r_b / g0.r_p)
+            if z == 0.0:
+                assert np.abs(dn).max() < 1e-12
+            else:
+                assert np.all(np.abs(dn / (c * math.cos(bb)) - 1) < 0.08)
+            h = 1e-5
+            vp, vm = s.evaluate(u, zz + h), s.evaluate(u, zz - h)
+            assert np.abs((vp.r - vm.r) / (2 * h) - p.r_v).max() < 1e-7
+            assert np.abs((vp.r_v - vm.r_v) / (2 * h) - p.r_vv).max() < 1e-7
