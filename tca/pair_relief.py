@@ -14,8 +14,10 @@ where the tangency solve of :mod:`tca.pair_reference` does not look:
 For every position, points of each relieved flank on the ridge line and on levels across its
 relieved zones (``levels`` x ``samples`` points) are put on the other flank by turning gear 2 (three
 position equations, :func:`tca.contact.corner_system`, as :mod:`tca.pair_bounded` does for the
-boundaries). The first touch is the largest :math:`\phi_2`; where it beats the contact found so
-far, it replaces it: refined by the edge equations on the ridge of a linear relief (kind EDGE,
+boundaries). The first touch is the largest :math:`\phi_2`; where it beats what the pair TCA knows (the
+contact found, or, where the edge search was skipped, the tangency of the extended surfaces, an upper
+bound of the bounded contact on which the sampled points also lie: the ridge crossing the contact
+line of an aligned pair is no news), it replaces it: refined by the edge equations on the ridge of a linear relief (kind EDGE,
 boundary code ``10 flank + 4`` for the ridge at the z_max end, ``+ 5`` at the z_min end), otherwise by
 the tangency equations (kind SURFACE). A maximum that the refinement cannot confirm stays the sampled
 point (it lies on both flanks; its :math:`\phi_2` is below the true first touch by at most the
