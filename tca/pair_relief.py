@@ -14,24 +14,27 @@ where the tangency solve of :mod:`tca.pair_reference` does not look:
 For every position, points of each relieved flank on the ridge line and on levels across its
 relieved zones (``levels`` x ``samples`` points) are put on the other flank by turning gear 2 (three
 position equations, :func:`tca.contact.corner_system`, as :mod:`tca.pair_bounded` does for the
-boundaries). The first touch is the largest :math:`\phi_2`; where it beats what the pair TCA knows (the
-contact found, or, where the edge search was skipped, the tangency of the extended surfaces, an upper
-bound of the bounded contact on which the sampled points also lie: the ridge crossing the contact
-line of an aligned pair is no news), it replaces it: refined by the edge equations on the ridge of a linear relief (kind EDGE,
-boundary code ``10 flank + 4`` for the ridge at the z_max end, ``+ 5`` at the z_min end), otherwise by
-the tangency equations (kind SURFACE). A maximum that the refinement cannot confirm stays the sampled
-point (it lies on both flanks; its :math:`\phi_2` is below the true first touch by at most the
-sampling error, reported in the residual-free record as the sampled value).
+boundaries), and the best point of each flank is sampled again between its neighbours. The first
+touch is the largest :math:`\phi_2`; where it beats what the pair TCA knows (the contact found, or,
+where the edge search was skipped, the tangency of the extended surfaces, an upper bound of the
+bounded contact on which the sampled points also lie: the ridge crossing the contact line of an
+aligned pair is no news), it replaces it, refined: on the ridge of a linear relief by the edge
+equations (kind EDGE, boundary code ``10 flank + 4`` for the ridge at the z_max end, ``+ 5`` at the
+z_min end; a corner ``100 flank + 10 code + 0|9`` where the ridge meets the fillet limit or the tip),
+inside a relieved zone by the tangency equations (kind SURFACE), from the best sample or, failing
+that, from the refined contact of the nearest position. Where the refined point leaves a working area
+through one boundary, the contact is on that boundary (edge-to-edge with the ridge, ``1000 + 10 b1 +
+b2``, or an edge of the other flank). A refined contact must touch no later than the best sample.
+Where no refinement succeeds the sample itself is kept, as :mod:`tca.pair_bounded` keeps an
+unconfirmed boundary maximum: it lies on both flanks (its projection converged), so it is a touch,
+later than the true first touch by at most the sampling error of the second level.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-import math
-
-from .contact import corner_system, edge_system, tangency_system
-from .errors import ConvergenceError
+from .contact import corner_system, edge_edge_system, edge_system, tangency_system
 from .newton import newton
 from .pair import GearPair
 from .pair_bounded import _tip_points, _u_of_radius
@@ -71,9 +74,10 @@ def _project(f1, f2, fl: int, phi1: np.ndarray, ph2g: np.ndarray, uv: np.ndarray
         Rf, _, tf, _ = f1.frame(ph1)
     loc = np.einsum("nji,nj->ni", Rf, pw.r - tf)
     guess = np.stack([_u_of_radius(fo)(np.hypot(loc[:, 0], loc[:, 1])), loc[:, 2], ph2], -1)
-    rr = newton(corner_system(f1, f2, ph1, fl, flat), guess, tol=opts.tol, maxiter=15, raise_on_failure=False,
-                max_backtracks=6)
-    con = fo.constraints(fo.surface.evaluate(rr.x[:, 0], rr.x[:, 1]), rr.x[:, 0])
+    with np.errstate(divide="ignore", invalid="ignore"):  # points run off the other flank: not converged
+        rr = newton(corner_system(f1, f2, ph1, fl, flat), guess, tol=opts.tol, maxiter=15, raise_on_failure=False,
+                    max_backtracks=6)
+        con = fo.constraints(fo.surface.evaluate(rr.x[:, 0], rr.x[:, 1]), rr.x[:, 0])
     ok = rr.converged & np.all(con <= opts.area_tol, -1)
     x = np.empty((n * m, 5))
     own, oth = (slice(0, 2), slice(2, 4)) if fl == 1 else (slice(2, 4), slice(0, 2))
@@ -115,16 +119,18 @@ def _candidates(f1, f2, fl: int, phi1, ph2g, opts, levels: int, samples: int):
 
 
 def relief_pass(pair: GearPair, ref: ReferencePairSolution, opts: TCAOptions, levels: int = 8,
-                samples: int = 11) -> None:
-    """Replace the contact of positions where a relieved zone or a ridge touches first (in place)."""
+                samples: int = 11) -> tuple[int, int]:
+    """Replace the contact of positions where a relieved zone or a ridge touches first (in place).
+
+    Returns (positions replaced, of which kept as sampled points: no refinement converged)."""
     f1, f2 = _flanks(pair)
     flanks = (f1, f2)
     relieved = [fl for fl in (1, 2) if flanks[fl - 1].gear.end_relief is not None]
     if not relieved:
-        return
+        return 0, 0
     sel = np.flatnonzero(~ref.out_of_mesh)
     if not len(sel):
-        return
+        return 0, 0
     ratio = pair.ratio
     fin = np.isfinite(ref.phi2)
     te = ref.phi2 - ratio * ref.phi1
@@ -138,8 +144,8 @@ def relief_pass(pair: GearPair, ref: ReferencePairSolution, opts: TCAOptions, le
     # surfaces, so a sample at or below it is no news, e.g. the ridge line crossing a line contact)
     known = np.where(ref.tangency & (ref.kind == ContactKind.NONE), ref.x[:, 4], ref.phi2)[sel]
     upd = np.flatnonzero(np.isfinite(top) & (top > known + 1e-12))
+    replaced = sampled = 0
     done: dict[int, dict[int, np.ndarray]] = {fl: {} for fl in relieved}  # refined x per flank and position
-    failed = []
     for q in upd:
         i = sel[q]
         found = []
@@ -148,55 +154,83 @@ def relief_pass(pair: GearPair, ref: ReferencePairSolution, opts: TCAOptions, le
             if not np.isfinite(val):
                 continue
             res = _settle(f1, f2, ref.phi1[i], x, fl, int(code), int(end), val, opts)
-            if res is None and done[fl]:  # second chance: from the refined contact of the nearest position
+            if not res[4] and done[fl]:  # second chance: from the refined contact of the nearest position
                 nb = min(done[fl], key=lambda j: abs(j - i))
                 x0 = done[fl][nb].copy()
                 x0[4] += ratio * (ref.phi1[i] - ref.phi1[nb])
-                res = _settle(f1, f2, ref.phi1[i], x0, fl, int(code), int(end), val, opts)
-            if res is not None:
+                again = _settle(f1, f2, ref.phi1[i], x0, fl, int(code), int(end), val, opts)
+                res = again if again[4] else res
+            if res[4]:
                 done[fl][i] = res[0]
-                found.append(res)
-        if not found:
-            failed.append(i)
-            continue
-        x, kind, where, resid = max(found, key=lambda f: f[0][4])
+            found.append(res)
+        x, kind, where, resid, refined = max(found, key=lambda f: f[0][4])
         if x[4] > ref.phi2[i] + 1e-12:
             ref.x[i], ref.kind[i], ref.where[i], ref.phi2[i], ref.residual[i] = x, kind, where, x[4], resid
-    if failed:
-        i = failed[0]
-        raise ConvergenceError("end-relief contact (refinement of the sampled first touch)",
-                               f"phi1 = {math.degrees(ref.phi1[i]):.6f} deg", float("nan"), 40)
+            replaced += 1
+            sampled += not refined
+    return replaced, sampled
 
 
 def _settle(f1, f2, phi1: float, x0: np.ndarray, fl: int, code: int, end: int, sampled: float, opts: TCAOptions):
-    """The contact near a sampled touch x0 of relieved flank fl: (x, kind, where, residual) or None.
+    """The contact near a sampled touch x0 of relieved flank fl: (x, kind, where, residual, refined).
 
     The ridge of a linear relief meeting the tip or the fillet limit is a corner, exact as sampled; the
     ridge elsewhere, or the tip / fillet limit across a relieved zone, is an edge (edge equations);
-    a sample inside a relieved zone is refined by the tangency equations. A refined contact must touch
-    no later than the sample (phi2 >= sampled).
+    a sample inside a relieved zone is refined by the tangency equations. Where the refined point leaves
+    a working area through one boundary, the contact is on that boundary: edge-to-edge (an edge before)
+    or an edge of that flank (a tangency before). A refined contact must touch no later than the sample
+    (phi2 >= sampled); where no refinement does, the sample itself is returned (refined False): it lies
+    on both flanks (its projection converged), so it is a touch, at most the sampling error later than
+    the first one.
     """
     ridge = bool(code) and (f1, f2)[fl - 1].gear.end_relief.power == 1
     if ridge and end >= 0:
-        return x0, ContactKind.CORNER, 100 * fl + 10 * code + (9 if end else 0), 0.0
+        return x0, ContactKind.CORNER, 100 * fl + 10 * code + (9 if end else 0), 0.0, True
     which = code if ridge else (-1 if end < 0 else end)
-    xr, res = _refine(f1, f2, phi1, x0, fl, which, opts)
-    if xr is None or xr[4] < sampled - 1e-12:
-        return None
-    return (xr, ContactKind.EDGE, 10 * fl + which, res) if which >= 0 else (xr, ContactKind.SURFACE, 0, res)
-
-
-def _refine(f1, f2, phi1: float, x0: np.ndarray, fl: int, which: int, opts: TCAOptions):
-    """Tangency (which = -1) or edge equations (boundary `which` of flank fl, :func:`tca.contact.boundary_derivs`)
-    from x0; (x, residual) if converged inside both areas, else (None, nan)."""
     ph = np.array([phi1])
-    system = edge_system(f1, f2, ph, fl, which) if which >= 0 else tangency_system(f1, f2, ph)
-    r = newton(system, x0[None], tol=opts.tol, maxiter=40, raise_on_failure=False)
+    if which >= 0:
+        first = (edge_system(f1, f2, ph, fl, which), ContactKind.EDGE, 10 * fl + which, {(fl, which)})
+    else:
+        first = (tangency_system(f1, f2, ph), ContactKind.SURFACE, 0, set())
+    xr, res, out = _refine(f1, f2, first[0], x0, first[3], opts)
+    if xr is not None and out is None and xr[4] >= sampled - 1e-12:
+        return xr, first[1], first[2], res, True
+    if xr is not None and out is not None:  # left a working area through one boundary: contact on it
+        fo, bo = out
+        if which >= 0 and fo != fl:
+            b1, b2 = (which, bo) if fl == 1 else (bo, which)
+            second = (edge_edge_system(f1, f2, ph, b1, b2), ContactKind.EDGE, 1000 + 10 * b1 + b2, {(1, b1), (2, b2)})
+        elif which < 0:
+            second = (edge_system(f1, f2, ph, fo, bo), ContactKind.EDGE, 10 * fo + bo, {(fo, bo)})
+        else:
+            second = None
+        if second is not None:
+            x2, res2, out2 = _refine(f1, f2, second[0], xr, second[3], opts)
+            if x2 is not None and out2 is None and x2[4] >= sampled - 1e-12:
+                return x2, second[1], second[2], res2, True
+    return x0, first[1], first[2], 0.0, False
+
+
+def _refine(f1, f2, system, x0: np.ndarray, on: set, opts: TCAOptions):
+    """Newton on `system` from x0: (x, residual, None) if converged inside both working areas (the
+    boundaries `on` = {(flank, boundary)} it lies on excepted), (x, residual, (flank, boundary)) if it
+    converged outside exactly one boundary, (None, nan, None) otherwise."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = newton(system, x0[None], tol=opts.tol, maxiter=40, raise_on_failure=False)
     xr = r.x[0]
     if not (r.converged[0] and r.residual[0] <= opts.max_residual):
-        return None, float("nan")
-    c1 = f1.constraints(f1.surface.evaluate(xr[0], xr[1]), xr[0])
-    c2 = f2.constraints(f2.surface.evaluate(xr[2], xr[3]), xr[2])
-    if np.all(c1 <= opts.area_tol) and np.all(c2 <= opts.area_tol):
-        return xr, float(r.residual[0])
-    return None, float("nan")
+        return None, float("nan"), None
+    with np.errstate(divide="ignore", invalid="ignore"):  # a run-off to a singular point of a flank
+        c = np.stack([f1.constraints(f1.surface.evaluate(xr[0], xr[1]), xr[0]),
+                      f2.constraints(f2.surface.evaluate(xr[2], xr[3]), xr[2])])
+    if not np.all(np.isfinite(c)):
+        return None, float("nan"), None
+    for fl, b in on:
+        if b < 4:
+            c[fl - 1, b] = 0.0
+    bad = np.argwhere(c > opts.area_tol)
+    if not len(bad):
+        return xr, float(r.residual[0]), None
+    if len(bad) == 1:
+        return xr, float(r.residual[0]), (int(bad[0, 0]) + 1, int(bad[0, 1]))
+    return None, float("nan"), None

@@ -59,3 +59,22 @@ def test_a_bad_end_relief_exits_2_without_files(tmp_path, key, value, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and f"gears.pinion.end_relief.{key}" in err[0]
     assert not out.exists()
+
+
+def test_gearfe_tca_on_a_misaligned_helical_pair_with_mixed_reliefs(tmp_path):
+    """Linear relief on the sun, parabolic on the planet, Δγ = 3' (Table 1.1 involute pair): the ridge of the
+    sun touches first (an edge contact), no traceback, files written; the relief lowers the TE of the
+    unmodified pair's face-end edge contact (77.8..82.4 arcsec, pipelines/cases/part1_sun_planet_involute.toml)."""
+    import json
+
+    text = (CASES_DIR / "part1_sun_planet_involute.toml").read_text()
+    text = text.replace("[gears.planet]", "[gears.sun.end_relief]\namount_um = 12.0\nlength_mm = 5.0\n\n[gears.planet]")
+    text = text.replace("[misalignment]", '[gears.planet.end_relief]\namount_um = 12.0\nlength_mm = 5.0\n'
+                        'shape = "parabolic"\n\n[misalignment]')
+    text = text.replace("cycles = 2\nsteps_per_cycle = 40", "cycles = 1\nsteps_per_cycle = 16")
+    path = tmp_path / "relieved.toml"
+    path.write_text(text)
+    out = tmp_path / "out"
+    assert main(["tca", str(path), "--out", str(out)]) == 0
+    s = json.loads((out / "summary.json").read_text())
+    assert s["te_max_arcsec"] < 77.0 and s["edge_contact"]
