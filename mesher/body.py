@@ -10,7 +10,9 @@ Grading ("model only what the scene needs"): a :class:`Focus` (flank side, param
 of the TCA contact point on the loaded tooth) refines the loaded flank around the contact point
 (``contact_size`` growing by ``growth`` up to ``coarse_size``), the axial levels around z, the depth
 below both flanks of the loaded tooth and its fillets (``fillet_size``); the contact point itself is
-a node. Unloaded teeth keep ``coarse_size``.
+a node. Unloaded teeth keep ``coarse_size``. On a gear with an end relief (:mod:`tca.end_relief`) the
+axial level nearest each relief start z_s is moved onto it (unless it carries the contact point), so
+a mesh line follows the ridge of a linear relief.
 
 Steps 5–6 (Fig. 1.7): named sets are made for every tooth j (the gear's own counter-clockwise index,
 0..N-1): ``tooth<j>/flank_pos`` (+y, driving side), ``tooth<j>/flank_neg``, ``tooth<j>/fillet_pos|neg``,
@@ -317,12 +319,21 @@ def mesh_gear(gear: Gear, opts: MeshOptions = MeshOptions(), centre: int = 0, fo
                 zf = MinField((zf,) + tuple(SizeField(sz["coarse"], sz["axial"], clamp(f.z) + 0.5 * B, sz["growth"],
                                                       f.extent_z) for _, f in ex))
         z = -0.5 * B + B * distribute(B, zf, nmin=2, pin=fc is not None)
+        pinned = set()
         for _, f in ex:  # each further focus on a level (unless the main one's node is the nearest)
             k = int(np.argmin(np.abs(z - clamp(f.z))))
             if abs(z[k] - z_ref) > 1e-12:
                 _pin(z, k, clamp(f.z))
+                pinned.add(k)
+        kc = -1
         if fc is not None:
-            _pin(z, int(np.argmin(np.abs(z - z_ref))), z_ref)
+            kc = int(np.argmin(np.abs(z - z_ref)))
+            _pin(z, kc, z_ref)
+        if gm.end_relief is not None:  # a mesh line on each start of the end relief (its ridge, if linear)
+            for zs in gm.end_relief.starts(B):
+                k = -1 if zs is None else int(np.argmin(np.abs(z - zs)))
+                if k != kc and k not in pinned:
+                    _pin(z, k, zs)
         rim_frac = uniform(count(sz["rim"], SizeField(sz["coarse"]), 2))
         plain = plan_tooth(geom, sz, z_ref, None, side=None if fc is None else fc.side)
         plans = [plain] * len(teeth)

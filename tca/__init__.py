@@ -10,6 +10,7 @@ and multi-body solvers assemble their own systems of Eqs. (1.9) and (3.18).
 from .contact import PlacedFlank, corner_system, edge_edge_system, edge_system, tangency_system
 from .crowning import DiskPlunge
 from .ellipse import contact_ellipse
+from .end_relief import EndRelief, RelievedSurface
 from .errors import ConvergenceError, GearfeError, GeometryError, InputError
 from .gear import FlankArea, Gear, TipRelief
 from .iso6336 import RootFactors, root_factors, sigma_f0
@@ -27,6 +28,6 @@ __all__ = [
     "PairTCAResult", "PlacedFlank", "RackCutter", "SurfacePoints", "TCAOptions", "ToothSurface", "contact_ellipse",
     "corner_system", "edge_edge_system", "edge_system", "ellipse_outlines", "newton", "rot_x", "rot_y", "rot_z",
     "run_pair_tca", "solve_reference_pair", "tangency_system",
-    "TipRelief", "RootFactors", "root_factors", "sigma_f0",
+    "TipRelief", "EndRelief", "RelievedSurface", "RootFactors", "root_factors", "sigma_f0",
     "MeshContact", "MeshTE", "PathOfContact", "mesh_contact", "path_of_contact", "position_angle",
 ]

@@ -122,7 +122,8 @@ def tangency_system(f1: PlacedFlank, f2: PlacedFlank, phi1: np.ndarray):
 
 
 def boundary_derivs(flank: PlacedFlank, loc: SurfacePoints, u, which: int):
-    """Value, d/du and d/dv of working-area constraint `which` (0 fillet, 1 tip, 2 z_max, 3 z_min)."""
+    """Value, d/du and d/dv of working-area constraint `which` (0 fillet, 1 tip, 2 z_max, 3 z_min), or of the
+    ridge of an end relief (4 at the z_max end, 5 at the z_min end; :mod:`tca.pair_relief`)."""
     g = flank.gear
     ar = g.area(flank.side)
     if which == 0:
@@ -134,6 +135,10 @@ def boundary_derivs(flank: PlacedFlank, loc: SurfacePoints, u, which: int):
         return g.kappa * (rho - ar.r_tip), cu, cv
     if which == 2:
         return loc.r[..., 2] - ar.z_max, loc.r_u[..., 2], loc.r_v[..., 2]
+    if which in (4, 5):
+        top, bot = g.end_relief.starts(g.face_width)
+        zs = top if which == 4 else bot
+        return loc.r[..., 2] - zs, loc.r_u[..., 2], loc.r_v[..., 2]
     return ar.z_min - loc.r[..., 2], -loc.r_u[..., 2], -loc.r_v[..., 2]
 
 

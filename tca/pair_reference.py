@@ -18,6 +18,7 @@ from .errors import ConvergenceError
 from .newton import newton
 from .pair import GearPair
 from .pair_bounded import bounded_pass
+from .pair_relief import relief_pass
 from .pair_result import ContactKind, ReferencePairSolution, TCAOptions, _flanks
 
 __all__ = ["solve_reference_pair", "classify_tangency"]
@@ -248,5 +249,6 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
     ref = ReferencePairSolution(phis, phi2, X, kind, resid, where, js, total_its, tan_ok, beyond)
     if bounded == "all":
         bounded_pass(pair, ref, np.flatnonzero((ref.kind == ContactKind.NONE) & ~ref.out_of_mesh), opts)
+        relief_pass(pair, ref, opts)  # end relief: relieved zones and ridges that touch first
     return ref
 

@@ -37,6 +37,7 @@ from .errors import ConvergenceError
 from .newton import newton
 from .pair import GearPair
 from .pair_bounded import bounded_pass
+from .pair_relief import relief_pass
 from .pair_result import ContactKind, ReferencePairSolution, TCAOptions, _flanks
 
 __all__ = ["has_runout", "turned_pair", "solve_candidate_pair", "CandidateTable", "candidate_table"]
@@ -147,6 +148,7 @@ def candidate_table(pair: GearPair, ref: ReferencePairSolution, ks: np.ndarray, 
         sel = valid[:, q] & (c.kind[jj] == ContactKind.NONE) & ~c.out_of_mesh[jj] & (
             (te_t > env + 1e-10) | ~np.isfinite(env))
         bounded_pass(turned[int(ks[q])], c, np.unique(jj[sel]), opts)
+        relief_pass(turned[int(ks[q])], c, opts)
     x = np.stack([c.x[rjc[:, q]] if c is not None else ref.x[rjc[:, q]] for q, c in enumerate(col)], 1)
     return CandidateTable(turned, pick("phi2", -np.inf) - ratio * ref.phi1[rjc], pick("kind", 0), x,
                           pick("residual", np.nan), pick("where", 0))

@@ -41,6 +41,7 @@ from .errors import GeometryError
 from .pair import GearPair
 from .pair_bounded import bounded_pass
 from .pair_reference import solve_reference_pair
+from .pair_relief import relief_pass
 from .pair_runout import candidate_table, has_runout
 from .pair_result import ContactKind, PairTCAResult, ReferencePairSolution, TCAOptions, _flanks, ellipse_outlines
 from .pair_transitions import Branches, extremes, transitions
@@ -95,6 +96,7 @@ def run_pair_tca(pair: GearPair, opts: TCAOptions = TCAOptions()) -> PairTCAResu
         cand = np.where(valid, te_c, -np.inf)
     else:
         bounded_pass(pair, ref, np.flatnonzero(need), opts)
+        relief_pass(pair, ref, opts)  # end relief: relieved zones and ridges that touch first
         te_ref = ref.phi2 - ratio * ref.phi1
         cand = np.where(valid, te_ref[rjc], -np.inf)
     if not np.all(np.isfinite(cand.max(1))):

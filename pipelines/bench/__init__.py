@@ -29,6 +29,7 @@ AREAS = {
     "stress": ("pipelines.bench.stress", {}),
     "reliability": ("pipelines.bench.reliability", ONE_CORE),
     "standard": ("pipelines.bench.standard", {}),
+    "end_relief": ("pipelines.bench.end_relief", {}),
     "ltca": ("pipelines.bench.ltca", {}),
     "peer": ("pipelines.bench.peer", {}),
 }

@@ -61,6 +61,9 @@ def read_face_train(case: Table) -> tuple[FaceTrain, dict]:
     g4 = _face_gear(case.table("gear4"), "gear4", shaper)
     p2 = read_gear(case.table("pinion2"), "pinion2")
     p3 = read_gear(case.table("pinion3"), "pinion3")
+    for g in (shaper, p2, p3):
+        if g.end_relief is not None:  # the face-gear TCA (tca.face_gear) has no search of relieved zones
+            raise InputError(f"{g.name}.end_relief", "given", "no [end_relief] in a face-gear drive (pair TCA only)")
     train = FaceTrain(g1, g4, p2, p3, delta, use)
     t = case.table("tca", required=False)
     opts = {"cycles": 3, "steps_per_cycle": 60, "mesh_steps_per_cycle": 120, "delta_samples": 73}

@@ -29,6 +29,11 @@ A gear table (``[gears.<name>]``)::
     amount_um = 20.0                 # C_a at the tip circle
     start_diameter_mm = 86.0         # d_Ca, or instead start_roll_mm: roll length from the base tangent point
     kind = "linear"                  # or "parabolic" (tangent to the involute at the start)
+    [gears.<name>.end_relief]        # lead modification at the face ends, both flanks (tca.end_relief)
+    amount_um = 15.0                 # C_I at the face end, along the line of action; <= s_n / 4
+    length_mm = 4.0                  # relieved length from each relieved face end, in (0, b/2]
+    shape = "linear"                 # or "parabolic": C(z) = C_I ((|z| - z_s) / L)^1 or ^2
+    ends = "both"                    # or "z_max", "z_min"
 
 A misalignment table: ``d_gamma_arcmin`` (change of shaft angle), ``d_gamma_v_arcmin``,
 ``d_center_um`` (centre distance), ``d_ex_um`` (perpendicular to the centre line),
@@ -44,6 +49,7 @@ from pathlib import Path
 
 from tca.crowning import DiskPlunge
 from tca.errors import GearfeError, InputError
+from tca.end_relief import END_RELIEF_ENDS, EndRelief
 from tca.gear import Gear, TipRelief
 from tca.pair import GearPair, Misalignment
 from tca.pair_tca import TCAOptions
@@ -128,6 +134,14 @@ def read_gear(t: Table, name: str) -> Gear:
             start = -rt.get("start_roll_mm", float, lo=0.0)  # a roll length, converted below with the base radius
         rt.done()
         relief = (amount, start, power)
+    end = None
+    et = t.table("end_relief", required=False)
+    if et is not None:
+        end = EndRelief(et.get("amount_um", float, lo=0.0, lo_open=True, hi=1e4) * 1e-3,
+                        et.get("length_mm", float, lo=0.0, lo_open=True, hi=1000.0),
+                        1 if et.get("shape", str, "linear", choices=("linear", "parabolic")) == "linear" else 2,
+                        et.get("ends", str, "both", choices=END_RELIEF_ENDS))
+        et.done()
     ref = t.get("reference_helix_deg", float, None, lo=0.0, hi=45.0, hi_open=True)
     try:
         g = Gear(
@@ -150,6 +164,7 @@ def read_gear(t: Table, name: str) -> Gear:
             plunge=plunge,
             runout=t.get("runout_um", float, 0.0, lo=0.0, hi=1000.0) * 1e-3,
             runout_phase=math.radians(t.get("runout_phase_deg", float, 0.0)),
+            end_relief=end,
         )
         if relief is not None:
             amount, start, power = relief
