@@ -6,7 +6,7 @@ Keys of ``[ltca]`` (all optional; every key is checked, unknown keys are rejecte
     positions = 100               # positions over one mesh cycle (one angular pitch of the driver)
     torques_nm = [78.0, 156.0]    # torques on the driven gear [N m]; default [torque_nm]
     profile_size_mm = 0.3         # flank grid: profile size; default 0.15 m
-    axial_size_mm = 1.0           # flank grid: axial size, also the size of the body's elements; default 0.5 m
+    axial_size_mm = 1.0           # flank grid: axial size, also the size of the body's elements; default min(0.5 m, b/14)
     slice_mm = 0.5                # length of a contact-line slice; default 0.25 m
     reach_um = 50.0               # pairs of teeth separated by more than this (TCA) are left out
     check_positions = 0           # positions also solved by the full contact FE (gearfe stress) for the check
@@ -62,10 +62,12 @@ class LTCAOptions:
         if not (isinstance(self.check_positions, int) and 0 <= self.check_positions <= self.positions):
             raise InputError("ltca.check_positions", self.check_positions, f"an integer in [0, positions = {self.positions}]")
 
-    def sizes(self, module: float) -> tuple[float, float, float]:
-        """(profile, axial, slice) sizes [mm] for gears of module m [mm]."""
+    def sizes(self, module: float, face_width: float = math.inf) -> tuple[float, float, float]:
+        """(profile, axial, slice) sizes [mm] for gears of module m and face width b [mm]: defaults 0.15 m,
+        min(0.5 m, b/14) (at least 14 axial elements: a narrow spur face at 0.5 m is 2.5 % too stiff,
+        docs/ltca.md) and 0.25 m."""
         return (self.profile_size if self.profile_size is not None else 0.15 * module,
-                self.axial_size if self.axial_size is not None else 0.5 * module,
+                self.axial_size if self.axial_size is not None else min(0.5 * module, face_width / 14.0),
                 self.slice if self.slice is not None else 0.25 * module)
 
 

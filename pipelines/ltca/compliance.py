@@ -171,10 +171,11 @@ def strip_constant(material: Material, ratio: float = 10.0, per_b: int = 12, gro
 
 
 def _mesh(gear: Gear, side: int, teeth: int, h_u: float, h_z: float, coarse: float, u_mid: float):
-    """The gear's model with a uniform grid on the loaded flanks (the focus zone covers the whole flank)."""
+    """The gear's model with a uniform grid on the loaded flanks (the focus zone covers the whole flank);
+    the fillets at the profile size (a fillet as coarse as the body makes the tooth too stiff in bending)."""
     B = gear.face_width
     top = max(coarse, h_u, h_z)
-    opts = MeshOptions(teeth=teeth, coarse_size=top, contact_size=h_u, axial_contact_size=h_z, fillet_size=top,
+    opts = MeshOptions(teeth=teeth, coarse_size=top, contact_size=h_u, axial_contact_size=h_z, fillet_size=min(top, h_u),
                        neighbour_size=h_u, growth=1.3)
     focus = Focus(side, u_mid, 0.0, extent_u=10.0 * gear.module * 3, extent_z=B)
     return mesh_gear(gear, opts, centre=0, focus=focus)

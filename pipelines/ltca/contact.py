@@ -63,6 +63,7 @@ from tca.pair import GearPair
 from tca.pair_bounded import boundary_curve
 from tca.pair_result import ContactKind
 from tca.planetary_mesh import MeshTE
+from tca.pair_te import TIE_MM, mesh_contact
 
 from pipelines.ltca.compliance import flattening
 from pipelines.stress.sizing import hertz_contact
@@ -127,10 +128,12 @@ def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: fl
     fc1, fc2 = flanks
     val, ks = mte.branches(np.array([phi], float))
     val = val[0]
-    q = int(np.argmax(val))
-    te, k = float(val[q]), int(ks[q])
+    te = float(val.max())
     if not math.isfinite(te):
         raise GeometryError(f"{pair.gear1.name}-{pair.gear2.name}", "no contact", f"at phi = {math.degrees(phi):.6f} deg")
+    # the pair in contact; ties (conjugate flanks) resolved as everywhere (tca.pair_te.mesh_contact)
+    near = np.isfinite(val) & ((te - val) * max(pair.gear2.r_p, 1.0) <= TIE_MM)
+    k = mesh_contact(mte.result, float(phi)).k if near.sum() > 1 else int(ks[int(np.argmax(val))])
     m1, m2 = pair.mounts()
     f1, f2 = PlacedFlank(pair.gear1, pair.side1, m1), PlacedFlank(pair.gear2, pair.side2, m2)
     p1, p2 = 2 * math.pi / pair.gear1.teeth, 2 * math.pi / pair.gear2.teeth
@@ -173,12 +176,21 @@ def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: fl
         ph2c = pair.ratio * phr + te  # the driven gear where the loaded pair touches
         if _ref_kind(mte, phr) == ContactKind.SURFACE:  # a point of tangency inside both areas: the line through it
             L = min(B, math.sqrt(2 * max(reach - gam * arm_c, 0.0) / l1) if l1 > 0 else B)
-            ns = int(math.ceil(L / ds))
+            ns = int(math.ceil(L / ds)) + 1
             xi = ds * np.arange(-ns, ns + 1)
+            *_, conv, margin = separation(f1, f2, par, x0[None, :] + xi[:, None] * t[None, :], phr, ph2c, gam * arm_c,
+                                          with_margin=True)
+            if not (conv[ns] and margin[ns] <= BOUNDARY_TOL):
+                continue
+            # the line inside both working areas, cut into equal slices of about ds ending on its boundaries
+            lo, hi = _clip(xi, margin, conv, ns, ds)
+            n_sl = max(1, int(math.ceil((hi - lo) / ds - 1e-9)))
+            seg_len = (hi - lo) / n_sl
+            xi = lo + seg_len * (np.arange(n_sl) + 0.5)
             xl = x0[None, :] + xi[:, None] * t[None, :]
             xs, n_s, xs2, g, conv = separation(f1, f2, par, xl, phr, ph2c, gam * arm_c)
             xs, xs2 = np.where(conv[:, None], xs, xl), np.where(conv[:, None], xs2, xl)
-            seg, edge = np.full(len(xi), ds), np.zeros(len(xi), int)
+            seg, edge = np.full(len(xi), seg_len), np.zeros(len(xi), int)
         else:  # an edge contact, or a tangency beyond a boundary: the boundaries it lies on or beyond
             xi, xs, xs2, n_s, g, conv, seg, edge = edge_slices(f1, f2, par, phr, ph2c, ds)
             if not len(xi):
@@ -237,38 +249,94 @@ BOUNDARY_TOL = 1e-6  # [mm] a point this close to a boundary lies on it (an edge
 EDGE_SLACK = 0.25  # fraction of a grid face beyond the border within which a boundary point is on its flank grid
 
 
-def _foot(f: PlacedFlank, uv0, phi: float, x: np.ndarray, tol: float = 1e-10, maxit: int = 40):
+def _foot(f: PlacedFlank, uv0, phi: float, x: np.ndarray, tol: float = 1e-10, maxit: int = 12):
     """Foot points on flank f (at angle phi) of points x (S, 3), from (u, v) = uv0 mapped over the tangent
-    plane: (SurfacePoints, converged mask)."""
+    plane, by Newton's method on the squared distance: (SurfacePoints, converged mask, (u, v) (S, 2)).
+    Within reach of the flank a point converges in a few steps; one that has not in ``maxit`` lies far
+    from it (typically past the flank's extension) and is left out."""
     S = len(x)
     w0, _, _ = f.world(np.array([uv0[0]]), np.array([uv0[1]]), np.array([phi]))
     J0 = np.stack([w0.r_u[0], w0.r_v[0]], 1)
     duv = np.linalg.lstsq(J0, (x - w0.r[0]).T, rcond=None)[0]
     u, v = uv0[0] + duv[0], uv0[1] + duv[1]
     ph = np.full(S, float(phi))
-    ok = np.zeros(S, bool)
-    for _ in range(maxit):
-        w, _, _ = f.world(u, v, ph)
-        d = x - w.r
-        a11, a12, a22 = (np.einsum("ij,ij->i", a, b) for a, b in ((w.r_u, w.r_u), (w.r_u, w.r_v), (w.r_v, w.r_v)))
-        b1, b2 = np.einsum("ij,ij->i", d, w.r_u), np.einsum("ij,ij->i", d, w.r_v)
+    ok = np.zeros(S, bool)  # converged
+    dot = lambda a, b: np.einsum("ij,ij->i", a, b)  # noqa: E731
+    act = np.arange(S)
+    for _ in range(maxit):  # Newton on |x - r(u, v)|^2 / 2 (second derivatives of the surface), unconverged points
+        w, _, _ = f.world(u[act], v[act], ph[act])
+        d = x[act] - w.r
+        a11 = dot(w.r_u, w.r_u) - dot(d, w.r_uu)
+        a12 = dot(w.r_u, w.r_v) - dot(d, w.r_uv)
+        a22 = dot(w.r_v, w.r_v) - dot(d, w.r_vv)
+        b1, b2 = dot(d, w.r_u), dot(d, w.r_v)
         det = a11 * a22 - a12 * a12
         with np.errstate(all="ignore"):
             du, dv = (a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det
-        du, dv = np.where(np.isfinite(du), du, 0.0), np.where(np.isfinite(dv), dv, 0.0)
-        u, v = u + du, v + dv
-        ok = np.abs(du) + np.abs(dv) < tol
-        if ok.all():
+        bad = ~(np.isfinite(du) & np.isfinite(dv))
+        du, dv = np.where(bad, 0.0, du), np.where(bad, 0.0, dv)
+        u[act], v[act] = u[act] + du, v[act] + dv
+        done = (np.abs(du) + np.abs(dv) < tol) & ~bad
+        ok[act[done]] = True
+        act = act[~done & ~bad]
+        if not len(act):
             break
     w, _, _ = f.world(u, v, ph)
     return w, ok & np.all(np.isfinite(w.r), axis=1), np.stack([u, v], 1)
 
 
-def in_area(f: PlacedFlank, uv: np.ndarray, tol: float = BOUNDARY_TOL) -> np.ndarray:
-    """Points (u, v) (S, 2) [mm] of flank f inside its working area (within ``tol`` [mm] of it)."""
+def area_margin(f: PlacedFlank, uv: np.ndarray) -> np.ndarray:
+    """Largest working-area constraint (fillet, tip, face ends; :meth:`tca.gear.Gear.constraints`) [mm] of
+    points (u, v) (S, 2) of flank f: <= 0 inside."""
     loc = f.surface.evaluate(uv[:, 0], uv[:, 1])
     with np.errstate(invalid="ignore"):
-        return np.all(f.constraints(loc, uv[:, 0]) <= tol, axis=-1)
+        c = f.constraints(loc, uv[:, 0]).max(axis=-1)
+    return np.where(np.isfinite(c), c, np.inf)
+
+
+def in_area(f: PlacedFlank, uv: np.ndarray, tol: float = BOUNDARY_TOL) -> np.ndarray:
+    """Points (u, v) (S, 2) [mm] of flank f inside its working area (within ``tol`` [mm] of it)."""
+    return area_margin(f, uv) <= tol
+
+
+def _clip(xi: np.ndarray, margin: np.ndarray, conv: np.ndarray, i0: int, ds: float) -> tuple[float, float]:
+    """Ends [mm] of the run of a line's points inside both working areas around index i0: where the area
+    margin crosses zero (linear interpolation between the last point inside and the first outside), or
+    half a slice beyond the last point where the line ends inside."""
+    inside = conv & (margin <= BOUNDARY_TOL)
+    ends = []
+    for step in (-1, 1):
+        i = i0
+        while 0 <= i + step < len(xi) and inside[i + step]:
+            i += step
+        j = i + step
+        if 0 <= j < len(xi) and np.isfinite(margin[j]) and margin[j] > margin[i]:
+            ends.append(xi[i] + (xi[j] - xi[i]) * (-margin[i]) / (margin[j] - margin[i]))
+        else:
+            ends.append(xi[i] + step * 0.5 * ds)
+    return ends[0], ends[1]
+
+
+_PIECES: dict = {}
+
+
+def _boundary_pieces(f: PlacedFlank, b: int, ds: float):
+    """Midpoints (arc length [mm], (u, v) (n, 2)) and length [mm] of the n pieces of boundary b of flank f
+    (in the tooth's own frame: the same at every angle; cached per gear, side, boundary and ds)."""
+    key = (id(f.gear), f.side, b, ds)
+    hit = _PIECES.get(key)
+    if hit is not None and hit[0] is f.gear:
+        return hit[1]
+    (t0, t1), tmap = boundary_curve(f, b)
+    ts = np.linspace(t0, t1, 401)
+    uvb = tmap(ts)
+    r = f.surface.evaluate(uvb[:, 0], uvb[:, 1]).r
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(r, axis=0), axis=1))])
+    n = max(1, int(round(s[-1] / ds)))
+    sm = (np.arange(n) + 0.5) * s[-1] / n
+    out = (sm, tmap(np.interp(sm, s, ts)), float(s[-1] / n))
+    _PIECES[key] = (f.gear, out)
+    return out
 
 
 def edge_slices(f1: PlacedFlank, f2: PlacedFlank, par, phi1: float, phi2: float, ds: float):
@@ -289,14 +357,8 @@ def edge_slices(f1: PlacedFlank, f2: PlacedFlank, par, phi1: float, phi2: float,
     sides = ((1, f1, f2, phi1, phi2, par[0:2], par[2:4]), (2, f2, f1, phi2, phi1, par[2:4], par[0:2]))
     for which, f, g, ph_f, ph_g, uv, uvg in sides:
         for b in (1, 2, 3):
-            (t0, t1), tmap = boundary_curve(f, b)
-            uvb = tmap(np.linspace(t0, t1, 401))
-            wb, _, _ = f.world(uvb[:, 0], uvb[:, 1], np.full(len(uvb), ph_f))
-            s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(wb.r, axis=0), axis=1))])
-            n = max(1, int(round(s[-1] / ds)))
-            sm = (np.arange(n) + 0.5) * s[-1] / n
-            tm = np.interp(sm, s, np.linspace(t0, t1, 401))
-            uvm = tmap(tm)
+            sm, uvm, piece = _boundary_pieces(f, b, ds)
+            n = len(sm)
             we, _, _ = f.world(uvm[:, 0], uvm[:, 1], np.full(n, ph_f))
             wg, ok, uvf = _foot(g, uvg, ph_g, we.r)
             ok &= in_area(g, uvf)  # the foot point on the other flank's working area
@@ -305,7 +367,7 @@ def edge_slices(f1: PlacedFlank, f2: PlacedFlank, par, phi1: float, phi2: float,
                 x1, x2, nrm = we.r, wg.r, -wg.n
             else:
                 x1, x2, nrm = wg.r, we.r, wg.n
-            out.append((sm, x1, x2, nrm, gap, ok, np.full(n, s[-1] / n), np.full(n, 10 * which + b)))
+            out.append((sm, x1, x2, nrm, gap, ok, np.full(n, piece), np.full(n, 10 * which + b)))
     if not out:
         e = np.zeros((0, 3))
         return np.zeros(0), e, e, e, np.zeros(0), np.zeros(0, bool), np.zeros(0), np.zeros(0, int)
@@ -313,7 +375,7 @@ def edge_slices(f1: PlacedFlank, f2: PlacedFlank, par, phi1: float, phi2: float,
 
 
 def separation(f1: PlacedFlank, f2: PlacedFlank, par, x, phi1: float, phi2: float, gap0: float, tol: float = 1e-10,
-               maxit: int = 30):
+               maxit: int = 30, with_margin: bool = False):
     """Exact separation of two flanks along gear 1's normal at the points of gear 1's flank nearest x (S, 3).
 
     Gear 1's flank at angle phi1, gear 2's at phi2 [rad]; ``par`` (u1, v1, u2, v2) [mm] a point near the
@@ -321,7 +383,7 @@ def separation(f1: PlacedFlank, f2: PlacedFlank, par, x, phi1: float, phi2: floa
     (Gauss–Newton on (x - r1)·r1_u = (x - r1)·r1_v = 0), then the normal line P1 + s n1 meets flank 2
     at P2 (Newton on r2(u2, v2) - P1 - s n1 = 0): s is the separation [mm] (> 0 apart). Returns P1,
     n1, P2, s and the mask of points where both solves converged with both points inside their flanks'
-    working areas (:func:`in_area`).
+    working areas (:func:`in_area`); ``with_margin``: also the larger of the two :func:`area_margin`.
     """
     S = len(x)
     u = np.full(S, float(par[0]))
@@ -363,8 +425,10 @@ def separation(f1: PlacedFlank, f2: PlacedFlank, par, x, phi1: float, phi2: floa
         if ok2.all():
             break
     w2, _, _ = f2.world(u2, v2, ph2)
-    inside = in_area(f1, np.stack([u, v], 1)) & in_area(f2, np.stack([u2, v2], 1))
-    return P1, n1, w2.r, sg, ok1 & ok2 & np.isfinite(sg) & inside
+    margin = np.maximum(area_margin(f1, np.stack([u, v], 1)), area_margin(f2, np.stack([u2, v2], 1)))
+    if with_margin:
+        return P1, n1, w2.r, sg, ok1 & ok2 & np.isfinite(sg) & (margin <= BOUNDARY_TOL), margin
+    return P1, n1, w2.r, sg, ok1 & ok2 & np.isfinite(sg) & (margin <= BOUNDARY_TOL)
 
 
 def _stack(locs, oks, m):

@@ -70,7 +70,7 @@ def build_model(case: StressCase, opts: LTCAOptions, say=None) -> LTCAModel:
     i = int(np.argmax(r.te[:-1] if len(r.te) > 1 else r.te))
     c = mesh_contact(r, float(r.phi1[i]))
     m = max(pair.gear1.module, pair.gear2.module)
-    hu, hz, ds = opts.sizes(m)
+    hu, hz, ds = opts.sizes(m, min(pair.gear1.face_width, pair.gear2.face_width))
     coarse = hz  # the body's elements as fine as the axial grid (a coarser body is too stiff in bending, docs/ltca.md)
     flanks = []
     for g, side, u in ((pair.gear1, pair.side1, c.params[0]), (pair.gear2, pair.side2, c.params[2])):

@@ -8,7 +8,9 @@ Library API (used by ``gearfe stress`` and by the ``run``/``compare``/``sweep`` 
 
 Near a transition of a mesh the next pair of teeth (``position.next_pair_gap_um`` from the TCA)
 closes under load and shares it: the other teeth's loaded flanks are meshed at
-``neighbour_size_mm`` for that. The summary's ``warnings`` flag a next pair closer than the elastic
+``neighbour_size_mm`` for that, and (pair model) every pair whose TCA separation is within
+``neighbour_reach_um`` gets its own refined zone at the loaded pair's sizes, around the reference
+pair's TCA point at its angle (``position.refined_neighbours``). The summary's ``warnings`` flag a next pair closer than the elastic
 approach that still carries nothing in the FE (its flanks too coarse to close).
 
 Stages (times in the summary): ``tca_s`` tooth contact analysis (and, for the twin drive, the
@@ -49,6 +51,8 @@ Case file (TOML, ``kind = "stress"``)::
     teeth = 3                     # teeth per gear part
     # coarse_size_mm, contact_size_mm, axial_contact_size_mm, fillet_size_mm, neighbour_size_mm, rim_depth_mm,
     # growth, zone: override the defaults of pipelines.stress.scene (Hertz-based contact sizes)
+    # neighbour_reach_um: pair model: neighbouring pairs closer than this (TCA) are meshed like the loaded
+    # one (default 3 P / (c' b), pipelines.stress.sizing.SizeRules.reach; 0: none)
     [fe]
     element = "C3D8I"             # or "C3D8"
     solver = "auto"               # "pardiso", "superlu"
