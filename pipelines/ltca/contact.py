@@ -56,7 +56,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from tca.contact import PlacedFlank
+from tca.contact import PlacedFlank, area_margin, foot_points
 from tca.ellipse import contact_ellipse
 from tca.errors import ConvergenceError, GeometryError
 from tca.pair import GearPair
@@ -249,51 +249,6 @@ BOUNDARY_TOL = 1e-6  # [mm] a point this close to a boundary lies on it (an edge
 EDGE_SLACK = 0.25  # fraction of a grid face beyond the border within which a boundary point is on its flank grid
 
 
-def _foot(f: PlacedFlank, uv0, phi: float, x: np.ndarray, tol: float = 1e-10, maxit: int = 12):
-    """Foot points on flank f (at angle phi) of points x (S, 3), from (u, v) = uv0 mapped over the tangent
-    plane, by Newton's method on the squared distance: (SurfacePoints, converged mask, (u, v) (S, 2)).
-    Within reach of the flank a point converges in a few steps; one that has not in ``maxit`` lies far
-    from it (typically past the flank's extension) and is left out."""
-    S = len(x)
-    w0, _, _ = f.world(np.array([uv0[0]]), np.array([uv0[1]]), np.array([phi]))
-    J0 = np.stack([w0.r_u[0], w0.r_v[0]], 1)
-    duv = np.linalg.lstsq(J0, (x - w0.r[0]).T, rcond=None)[0]
-    u, v = uv0[0] + duv[0], uv0[1] + duv[1]
-    ph = np.full(S, float(phi))
-    ok = np.zeros(S, bool)  # converged
-    dot = lambda a, b: np.einsum("ij,ij->i", a, b)  # noqa: E731
-    act = np.arange(S)
-    for _ in range(maxit):  # Newton on |x - r(u, v)|^2 / 2 (second derivatives of the surface), unconverged points
-        w, _, _ = f.world(u[act], v[act], ph[act])
-        d = x[act] - w.r
-        a11 = dot(w.r_u, w.r_u) - dot(d, w.r_uu)
-        a12 = dot(w.r_u, w.r_v) - dot(d, w.r_uv)
-        a22 = dot(w.r_v, w.r_v) - dot(d, w.r_vv)
-        b1, b2 = dot(d, w.r_u), dot(d, w.r_v)
-        det = a11 * a22 - a12 * a12
-        with np.errstate(all="ignore"):
-            du, dv = (a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det
-        bad = ~(np.isfinite(du) & np.isfinite(dv))
-        du, dv = np.where(bad, 0.0, du), np.where(bad, 0.0, dv)
-        u[act], v[act] = u[act] + du, v[act] + dv
-        done = (np.abs(du) + np.abs(dv) < tol) & ~bad
-        ok[act[done]] = True
-        act = act[~done & ~bad]
-        if not len(act):
-            break
-    w, _, _ = f.world(u, v, ph)
-    return w, ok & np.all(np.isfinite(w.r), axis=1), np.stack([u, v], 1)
-
-
-def area_margin(f: PlacedFlank, uv: np.ndarray) -> np.ndarray:
-    """Largest working-area constraint (fillet, tip, face ends; :meth:`tca.gear.Gear.constraints`) [mm] of
-    points (u, v) (S, 2) of flank f: <= 0 inside."""
-    loc = f.surface.evaluate(uv[:, 0], uv[:, 1])
-    with np.errstate(invalid="ignore"):
-        c = f.constraints(loc, uv[:, 0]).max(axis=-1)
-    return np.where(np.isfinite(c), c, np.inf)
-
-
 def in_area(f: PlacedFlank, uv: np.ndarray, tol: float = BOUNDARY_TOL) -> np.ndarray:
     """Points (u, v) (S, 2) [mm] of flank f inside its working area (within ``tol`` [mm] of it)."""
     return area_margin(f, uv) <= tol
@@ -360,7 +315,7 @@ def edge_slices(f1: PlacedFlank, f2: PlacedFlank, par, phi1: float, phi2: float,
             sm, uvm, piece = _boundary_pieces(f, b, ds)
             n = len(sm)
             we, _, _ = f.world(uvm[:, 0], uvm[:, 1], np.full(n, ph_f))
-            wg, ok, uvf = _foot(g, uvg, ph_g, we.r)
+            wg, ok, uvf = foot_points(g, uvg, ph_g, we.r)
             ok &= in_area(g, uvf)  # the foot point on the other flank's working area
             gap = np.einsum("ij,ij->i", we.r - wg.r, wg.n)
             if which == 1:

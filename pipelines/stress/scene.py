@@ -64,6 +64,7 @@ from tca.pair import GearPair
 from tca.pair_tca import ContactKind, PairTCAResult
 from tca.planetary import PlanetaryTrain, ShaftErrors
 from tca.pair_te import MeshContact, mesh_contact
+from tca.contact import PlacedFlank, foot_points
 from tca.planetary_mesh import member_pose, subgear_pairs
 from tca.transforms import rot_x, rot_z
 from tca.units import ARCSEC
@@ -202,6 +203,50 @@ def _kind_name(k: int) -> str:
     return ContactKind.names.get(int(k), str(k))
 
 
+def _clamp(area, uv) -> np.ndarray:
+    """(u, v) [mm] moved onto a working area (profile parameter between form circle and tip, v on the face)."""
+    return np.array([min(max(uv[0], area.u_form), area.u_tip), min(max(uv[1], area.z_min), area.z_max)])
+
+
+def neighbour_params(pair: GearPair, c: MeshContact, o, extent: float) -> tuple | None:
+    """(u1, v1, u2, v2) [mm] of the refined zones of a neighbouring pair of teeth (a
+    :class:`tca.pair_te.NeighbourContact`), at one place in space on both flanks; None where no such
+    place exists (the two points, each on its working area, further apart than ``extent`` [mm], the
+    zone's half-length along the profile: e.g. a ring's tip edge whose foot on the pinion lies below
+    the pinion's form circle — that pair touches, if at all, in the fillet, which is not refined).
+
+    A contact of the TCA (surface, edge, corner) is used as it is. Where the extended surfaces touch
+    outside a working area (beyond a tip, below a form circle, off the face) the pair can touch only
+    along a boundary: the point is moved onto the working area of the gear whose tip it passes (else
+    of the one it lies further outside), and the other gear's zone is centred on the foot of that
+    point on its flank (:func:`tca.contact.foot_points`), at the angles where the loaded pair touches.
+    Conjugate flanks make every such pair "touch" with gap 0; the zones then still sit where the
+    pair's boundary meets the other flank, so master and slave are refined at the same place.
+    """
+    if o.kind in (ContactKind.SURFACE, ContactKind.EDGE, ContactKind.CORNER):
+        return tuple(o.params)
+    g1, g2 = pair.gear1, pair.gear2
+    m1, m2 = pair.mounts()
+    phr = c.phi1 - o.k * 2 * math.pi / g1.teeth
+    ph = (phr, pair.ratio * phr + c.te)
+    fl = (PlacedFlank(g1, pair.side1, m1), PlacedFlank(g2, pair.side2, m2))
+    uv = (np.array(o.params[:2], float), np.array(o.params[2:], float))
+    cons = [fl[i].constraints(fl[i].surface.evaluate(uv[i][:1], uv[i][1:]), uv[i][:1])[0] for i in (0, 1)]
+    tip = [cons[i][1] > 0 for i in (0, 1)]
+    a = 0 if tip[0] and not tip[1] else 1 if tip[1] and not tip[0] else int(np.argmax([max(cons[0]), max(cons[1])]))
+    b = 1 - a
+    areas = (g1.area(pair.side1), g2.area(pair.side2))
+    out = [None, None]
+    out[a] = _clamp(areas[a], uv[a])
+    x, _, _ = fl[a].world(out[a][:1], out[a][1:], np.array([ph[a]]))
+    _, ok, uvf = foot_points(fl[b], uv[b], ph[b], x.r)
+    out[b] = _clamp(areas[b], uvf[0] if ok[0] else uv[b])
+    y, _, _ = fl[b].world(out[b][:1], out[b][1:], np.array([ph[b]]))
+    if not np.linalg.norm(y.r[0] - x.r[0]) <= extent:
+        return None
+    return (float(out[0][0]), float(out[0][1]), float(out[1][0]), float(out[1][1]))
+
+
 def pair_scene(pair: GearPair, result: PairTCAResult, phi1: float, torque: float, rules: SizeRules,
                E: float, nu: float) -> Scene:
     """Driver fixed, driven gear rigid (rotation free, torque -T about its axis) at driver angle phi1 [rad]."""
@@ -214,8 +259,10 @@ def pair_scene(pair: GearPair, result: PairTCAResult, phi1: float, torque: float
     near = [o for o in c.others if o.gap <= reach]
     if near:  # neighbouring pairs that may close under load: refined around their own contact points
         fd, fn = itf.driver.focus, itf.driven.focus
-        d = replace(itf.driver, others=tuple(((-o.k) % g1.teeth, replace(fd, u=o.params[0], z=o.params[1])) for o in near))
-        n = replace(itf.driven, others=tuple(((-o.k) % g2.teeth, replace(fn, u=o.params[2], z=o.params[3])) for o in near))
+        pars = [neighbour_params(pair, c, o, max(fd.extent_u, fn.extent_u)) for o in near]
+        near, pars = [o for o, q in zip(near, pars) if q is not None], [q for q in pars if q is not None]
+        d = replace(itf.driver, others=tuple(((-o.k) % g1.teeth, replace(fd, u=q[0], z=q[1])) for o, q in zip(near, pars)))
+        n = replace(itf.driven, others=tuple(((-o.k) % g2.teeth, replace(fn, u=q[2], z=q[3])) for o, q in zip(near, pars)))
         itf = replace(itf, driver=d, driven=n)
     m1, m2 = pair.mounts()
     ratio = g1.teeth / g2.teeth
