@@ -59,7 +59,9 @@ def test_signal_stops_with_one_line_and_no_temporary_folder(sig, status, tmp_pat
     p.send_signal(sig)
     rest = p.stderr.read()
     rc = p.wait(timeout=120)
-    assert rc == status, rest
+    # the status in the message: one fresh-clone run under load saw another status after "tca: done" (not reproduced
+    # in 40 further runs at delays 0.05-3.5 s, with and without CPU load)
+    assert rc == status, f"exit status {rc}, stderr after the first line: {rest!r}"
     lines = [ln for ln in rest.splitlines() if ln.strip()]
     assert "Traceback" not in rest and lines[-1].startswith("gearfe stress: ") and "no partial results" in lines[-1]
     assert sorted(p.name for p in tmp_path.iterdir()) == []  # neither out nor a hidden staging folder
