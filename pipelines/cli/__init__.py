@@ -7,7 +7,7 @@ The error contract (docs/errors.md):
   status 2, with no result files written; ``--out`` is checked before any work
   (:func:`pipelines.cli.outdir.check_out`), ``--force`` allows a non-empty folder;
 * SIGINT (Ctrl-C) and SIGTERM (``timeout``, batch schedulers) stop the run with one line and exit
-  status 130 / 143; staged output folders are removed on the way out (sweeps keep their finished
+  status 130 / 143 (:mod:`pipelines.cli.interrupt`: at the next progress line at the latest); staged output folders are removed on the way out (sweeps keep their finished
   points and resume);
 * an unexpected exception (a bug) is one line naming its type and exit status 70; set
   ``GEARFE_TRACEBACK=1`` to see the traceback.
@@ -18,14 +18,14 @@ from __future__ import annotations
 import argparse
 import importlib
 import os
-import signal
 import sys
 
 from tca.errors import GearfeError
 
+from pipelines.cli.interrupt import Terminated, check_interrupted, install, restore
 from pipelines.render import offscreen
 
-__all__ = ["main", "SUBCOMMANDS", "Terminated", "EXIT_INPUT", "EXIT_BUG", "EXIT_SIGINT", "EXIT_SIGTERM"]
+__all__ = ["main", "SUBCOMMANDS", "Terminated", "check_interrupted", "EXIT_INPUT", "EXIT_BUG", "EXIT_SIGINT", "EXIT_SIGTERM"]
 
 EXIT_INPUT = 2  # bad input, impossible geometry, a failed solve, a model too large
 EXIT_BUG = 70  # an unexpected exception (EX_SOFTWARE)
@@ -35,12 +35,6 @@ EXIT_SIGTERM = 143  # 128 + SIGTERM
 RESUMABLE = {"sweep": "sweep.json"}
 
 
-class Terminated(BaseException):
-    """Raised in the main thread on SIGTERM, so that staged output is cleaned up like on Ctrl-C."""
-
-
-def _on_sigterm(signum, frame):
-    raise Terminated()
 
 # subcommand name -> module in pipelines implementing add_args(parser) and handle(args) -> int
 SUBCOMMANDS = {
@@ -77,11 +71,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     offscreen()  # images are rendered without a display (EGL), set up here and not at import
     where = f"gearfe {args.command}"
-    old = None
-    try:
-        old = signal.signal(signal.SIGTERM, _on_sigterm)
-    except ValueError:  # not the main thread (e.g. called from a worker): default handling
-        pass
+    old = install()
     try:
         if hasattr(args, "out"):
             from pipelines.cli.outdir import check_out
@@ -104,8 +94,7 @@ def main(argv: list[str] | None = None) -> int:
               "the case file; GEARFE_TRACEBACK=1 shows the traceback)", file=sys.stderr)
         return EXIT_BUG
     finally:
-        if old is not None:
-            signal.signal(signal.SIGTERM, old)
+        restore(old)
 
 
 def _one_line(exc: BaseException) -> str:

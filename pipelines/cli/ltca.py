@@ -17,6 +17,7 @@ import sys
 import time
 from pathlib import Path
 
+from pipelines.cli.interrupt import check_interrupted
 from pipelines.cases.reader import load_case
 from pipelines.cli.outdir import staged_output
 from pipelines.ltca.case import read_ltca_case
@@ -31,6 +32,7 @@ def add_args(p: argparse.ArgumentParser) -> None:
 
 
 def _say(msg: str) -> None:
+    check_interrupted()
     print(f"gearfe ltca: {msg}", file=sys.stderr, flush=True)
 
 

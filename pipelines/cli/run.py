@@ -24,6 +24,7 @@ from pathlib import Path
 from tca.errors import InputError
 from tca.pair_te import POSITIONS
 
+from pipelines.cli.interrupt import check_interrupted
 from pipelines.cases.reader import load_case
 from pipelines.cli.outdir import staged_output
 from pipelines.report.html import run_html
@@ -83,7 +84,8 @@ def read_with_overrides(path, args) -> StressCase:
 
 
 def progress(msg: str) -> None:
-    """Progress line on stderr."""
+    """Progress line on stderr (and the place where a swallowed Ctrl-C stops the run)."""
+    check_interrupted()
     print(f"gearfe: {msg}", file=sys.stderr, flush=True)
 
 

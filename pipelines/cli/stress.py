@@ -20,6 +20,7 @@ import sys
 import time
 from pathlib import Path
 
+from pipelines.cli.interrupt import check_interrupted
 from pipelines.cases.reader import load_case
 from pipelines.cli.outdir import staged_output
 from pipelines.stress.case import read_stress_case
@@ -42,6 +43,7 @@ def add_args(p: argparse.ArgumentParser) -> None:
 
 
 def _progress(msg: str) -> None:
+    check_interrupted()
     print(f"gearfe stress: {msg}", file=sys.stderr, flush=True)
 
 

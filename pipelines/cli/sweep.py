@@ -67,6 +67,7 @@ from pathlib import Path
 
 from tca.errors import GearfeError, InputError
 
+from pipelines.cli.interrupt import check_interrupted
 from pipelines.cases.reader import load_case
 from pipelines.cases.validate import validate_case
 from pipelines.cli.outdir import atomic_write_text
@@ -207,6 +208,7 @@ def _scalars(summary: dict) -> dict:
 
 
 def _progress(done: int, total: int, t0: float) -> None:
+    check_interrupted()
     width = 30
     fill = int(width * done / total)
     rate = done / max(time.perf_counter() - t0, 1e-9)

@@ -96,3 +96,22 @@ def test_plausibility_warnings_against_statics():
     w = plausibility_warnings(case, {"torque_balance_error": 1.0, "contact_force_n": 0.0})  # E = 1e-30 before
     assert len(w) == 2 and w[0].startswith("torque balance error 1 > 0.01") and "far from the nominal" in w[1]
     assert plausibility_warnings(case, {"torque_balance_error": float("nan"), "contact_force_n": 3 * nominal})
+
+
+def test_a_swallowed_ctrl_c_still_stops_at_the_next_progress_line():
+    """A library's bare ``except:`` may swallow the KeyboardInterrupt of SIGINT; the pending signal is
+    raised again by the next progress line (pipelines.cli.interrupt)."""
+    from pipelines.cli.interrupt import check_interrupted, install, restore
+
+    old = install()
+    try:
+        try:
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.5)  # the handler runs in the main thread here
+        except BaseException:  # noqa: BLE001 - what a careless library does
+            pass
+        with pytest.raises(KeyboardInterrupt):
+            check_interrupted()
+    finally:
+        restore(old)
+    check_interrupted()  # nothing pending once restored
