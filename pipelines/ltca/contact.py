@@ -174,27 +174,22 @@ def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: fl
             dropped.append(kk)
             continue
         ph2c = pair.ratio * phr + te  # the driven gear where the loaded pair touches
-        if _ref_kind(mte, phr) == ContactKind.SURFACE:  # a point of tangency inside both areas: the line through it
-            L = min(B, math.sqrt(2 * max(reach - gam * arm_c, 0.0) / l1) if l1 > 0 else B)
-            ns = int(math.ceil(L / ds)) + 1
-            xi = ds * np.arange(-ns, ns + 1)
-            *_, conv, margin = separation(f1, f2, par, x0[None, :] + xi[:, None] * t[None, :], phr, ph2c, gam * arm_c,
-                                          with_margin=True)
-            if not (conv[ns] and margin[ns] <= BOUNDARY_TOL):
-                continue
-            # the line inside both working areas, cut into equal slices of about ds ending on its boundaries
-            lo, hi = _clip(xi, margin, conv, ns, ds)
-            n_sl = max(1, int(math.ceil((hi - lo) / ds - 1e-9)))
-            seg_len = (hi - lo) / n_sl
-            xi = lo + seg_len * (np.arange(n_sl) + 0.5)
-            xl = x0[None, :] + xi[:, None] * t[None, :]
-            xs, n_s, xs2, g, conv = separation(f1, f2, par, xl, phr, ph2c, gam * arm_c)
-            xs, xs2 = np.where(conv[:, None], xs, xl), np.where(conv[:, None], xs2, xl)
-            seg, edge = np.full(len(xi), seg_len), np.zeros(len(xi), int)
-        else:  # an edge contact, or a tangency beyond a boundary: the boundaries it lies on or beyond
-            xi, xs, xs2, n_s, g, conv, seg, edge = edge_slices(f1, f2, par, phr, ph2c, ds)
-            if not len(xi):
-                continue
+        kind = _ref_kind(mte, phr)
+        parts = []
+        L = min(B, math.sqrt(2 * max(reach - gam * arm_c, 0.0) / l1) if l1 > 0 else B)
+        line = _line_slices(f1, f2, par, x0, t, L, ds, phr, ph2c, gam * arm_c)
+        if line is not None:  # the TCA point on both working areas: the line through it
+            parts.append(line)
+        if kind != ContactKind.SURFACE:  # an edge contact, or a tangency beyond a boundary: the boundaries too
+            eg = edge_slices(f1, f2, par, phr, ph2c, ds)
+            if len(eg[0]) and line is not None:  # not where the line already is
+                dist = np.linalg.norm(eg[1][:, None, :] - line[1][None, :, :], axis=2).min(axis=1)
+                eg = tuple(a_[dist > ds] for a_ in eg)
+            if len(eg[0]):
+                parts.append(eg)
+        if not parts:
+            continue
+        xi, xs, xs2, n_s, g, conv, seg, edge = (np.concatenate([q[j] for q in parts]) for j in range(8))
         arm = np.abs(np.einsum("ij,ij->i", np.cross(xs - m2.origin, n_s), np.broadcast_to(m2.axis, xs.shape)))
         # slice points in each model's gear frame, on the model tooth of this pair
         R1, _ = m1.rotation(phr)
@@ -252,6 +247,26 @@ EDGE_SLACK = 0.25  # fraction of a grid face beyond the border within which a bo
 def in_area(f: PlacedFlank, uv: np.ndarray, tol: float = BOUNDARY_TOL) -> np.ndarray:
     """Points (u, v) (S, 2) [mm] of flank f inside its working area (within ``tol`` [mm] of it)."""
     return area_margin(f, uv) <= tol
+
+
+def _line_slices(f1, f2, par, x0, t, L: float, ds: float, phi1: float, phi2: float, gap0: float):
+    """Slices of the line through the reference point x0 along t [mm], inside both working areas and
+    within L of x0, cut into equal slices of about ds ending on the area boundaries (:func:`_clip`);
+    None when x0 is not on both working areas. Same tuple as :func:`edge_slices` (edge code 0)."""
+    ns = int(math.ceil(L / ds)) + 1
+    xi = ds * np.arange(-ns, ns + 1)
+    *_, conv, margin = separation(f1, f2, par, x0[None, :] + xi[:, None] * t[None, :], phi1, phi2, gap0,
+                                  with_margin=True)
+    if not (conv[ns] and margin[ns] <= BOUNDARY_TOL):
+        return None
+    lo, hi = _clip(xi, margin, conv, ns, ds)
+    n_sl = max(1, int(math.ceil((hi - lo) / ds - 1e-9)))
+    seg_len = (hi - lo) / n_sl
+    xi = lo + seg_len * (np.arange(n_sl) + 0.5)
+    xl = x0[None, :] + xi[:, None] * t[None, :]
+    xs, n_s, xs2, g, conv = separation(f1, f2, par, xl, phi1, phi2, gap0)
+    xs, xs2 = np.where(conv[:, None], xs, xl), np.where(conv[:, None], xs2, xl)
+    return xi, xs, xs2, n_s, g, conv, np.full(len(xi), seg_len), np.zeros(len(xi), int)
 
 
 def _clip(xi: np.ndarray, margin: np.ndarray, conv: np.ndarray, i0: int, ds: float) -> tuple[float, float]:

@@ -26,9 +26,10 @@ and the section of :math:`T` teeth, in sizes relative to the module (:math:`\bar
 :math:`n_s = 155 + 33.7\,\bar c^{-2} + 7.5\,\bar h^{-1} + 37.6\,(T-1)\,\bar c^{-2}` (the coarse
 area of the loaded tooth and its rim, the grading towards the contact point, the other teeth),
 so :math:`N = n_z n_s`. With further foci (neighbouring pairs meshed like the loaded one,
-:mod:`pipelines.stress.scene`) the refined axial zones are the union of theirs (length :math:`U` in
-:math:`k` pieces: :math:`n_z = \min(F/h_a,\ U/h_a + 2k\ln(c/h_a)/\ln q + F/c)`) and each adds a
-grading term :math:`7.5\,\bar h^{-1}` to the section. The four coefficients are a least-squares fit to 20 real part meshes
+:mod:`pipelines.stress.scene`) :math:`n_z` grows by the ratio of :math:`\int dz/h(z)` over the face
+for the smallest of the zones' size fields :math:`h_a + (q-1)\max(|z-z_i|-e_i, 0)` (capped at
+:math:`c`) to the same for the first zone alone, and each further zone adds a grading term
+:math:`7.5\,\bar h^{-1}` to the section. The four coefficients are a least-squares fit to 20 real part meshes
 (Table 1.1 sun and planet, refine 0.5-3, one, three and five teeth, contact sizes 0.015-0.16 mm):
 within -7 % / +15 % of the mesher's counts (``make bench``, area ``reliability``, checks it).
 DOF = 3 x 1.15 N (nodes per element of these meshes). Peak memory of the
@@ -41,6 +42,8 @@ sparse direct solve (PARDISO measured on a hexahedral box: 0.54 GB at 53k DOF, 8
 from __future__ import annotations
 
 import math
+
+import numpy as np
 import os
 import dataclasses
 from dataclasses import dataclass
@@ -116,30 +119,26 @@ def _count(L: float, h: float, c: float, ext: float, q: float) -> float:
     return min(L / h, 2 * ext / h + 2 * math.log(c / h) / math.log(max(q, 1.01)) + L / c)
 
 
-def _union(intervals: list) -> tuple[float, int]:
-    """Total length and number of the disjoint pieces of a union of intervals (lo, hi)."""
-    total, pieces, end = 0.0, 0, -math.inf
-    for lo, hi in sorted(intervals):
-        if lo > end:
-            pieces += 1
-            total += hi - lo
-        elif hi > end:
-            total += hi - end
-        end = max(end, hi)
-    return total, pieces
-
-
 def part_elements(gear, sizes: dict, teeth: int, extent_z: float = 0.0, zones: tuple = ()) -> float:
     """Elements of one part's mesh (module docstring) from its sizes [mm] (keys coarse, contact, axial, growth).
 
     ``zones``: (z, extent_z) [mm] of every focus when there are several (refined neighbouring teeth): the
-    refined axial zones are their union, and each further focus adds a graded tooth section."""
+    axial layers of the first grow by the ratio of the integrals of 1/h over the face for the smallest
+    of all their size fields (the mesher's :class:`mesher.grading.MinField`) and for the first alone,
+    and each further focus adds a graded tooth section."""
     a, b, c_, d = _SECTION
     m, c = gear.module, sizes["coarse"]
     h, q, F = min(sizes["axial"], c), sizes["growth"], gear.face_width
-    if len(zones) > 1:
-        U, pieces = _union([(z - e, z + e) for z, e in zones])
-        nz = min(F / h, U / h + pieces * 2 * math.log(c / h) / math.log(max(q, 1.01)) + F / c)
+    if len(zones) > 1:  # the calibrated count of the first zone, times the growth of the layer integral
+        x = np.linspace(-0.5 * F, 0.5 * F, 4001)
+
+        def layers(zs):
+            size = np.full_like(x, c)
+            for z, e in zs:
+                size = np.minimum(size, h + (q - 1.0) * np.maximum(np.abs(x - z) - e, 0.0))
+            return float(np.sum(0.5 * (1 / size[1:] + 1 / size[:-1]) * np.diff(x)))
+
+        nz = _count(F, h, c, extent_z, q) * layers(zones) / layers(zones[:1])
     else:
         nz = _count(F, h, c, extent_z, q)
     cbar, hbar = c / m, min(sizes["contact"], c) / m
