@@ -28,11 +28,13 @@ run: install
 	@echo "        each design: $(OUT)/part1_compare/{new,conventional}/ (report.html, teeth_*.png, flank_*.png, ...)"
 	@echo "        TCA plots: $(OUT)/part1_sun_planet/te.png, contact_paths.png"
 
-# two workers, one test file each (module fixtures are built once): 3 min instead of 5 on 2 cores
+# two workers, one test file each (module fixtures are built once): 4 min instead of 7 on 2 cores;
+# convergence studies (marker "bench") run with make bench
 test: install
-	$(BIN)/python -m pytest -q -n 2 --dist loadfile
+	$(BIN)/python -m pytest -q -n 2 --dist loadfile -m "not bench"
 
 bench: install
+	$(BIN)/python -m pytest -q -m bench
 	$(BIN)/python -m pipelines.bench --out $(OUT)/bench
 
 clean:
