@@ -18,7 +18,7 @@ from .newton import NewtonResult, newton
 from .pair import GearPair
 from .pair_result import ContactKind, ReferencePairSolution, TCAOptions, _flanks
 
-__all__ = ["bounded_pass", "boundary_curve"]
+__all__ = ["bounded_pass", "boundary_curve", "onto_other_flank"]
 
 
 def bounded_pass(pair: GearPair, ref: "ReferencePairSolution", sel: np.ndarray, opts: TCAOptions) -> None:
@@ -75,6 +75,29 @@ def _boundary_param(flank: PlacedFlank, b: int):
     return (ar.u_form, u_end), lambda t: np.stack([np.asarray(t, float), np.full(np.shape(t), zb)], -1)
 
 
+def onto_other_flank(f1: PlacedFlank, f2: PlacedFlank, fl: int, uv: np.ndarray, ph1: np.ndarray, ph2: np.ndarray,
+                     tol: float, u_of_r=None):
+    """Points uv (N, 2) [mm] of flank fl (1 or 2) put on the other flank by turning gear 2 (three position
+    equations, :func:`tca.contact.corner_system`), gear 1 at ph1 (N,) and gear 2 starting at ph2 (N,) [rad].
+
+    Returns the :class:`tca.newton.NewtonResult` (x: u, v on the other flank and phi2; not raising where a
+    point runs off) and the other flank's working-area constraints (N, 4). ``u_of_r``: the other flank's
+    u(radius) for the guesses (:func:`_u_of_radius`; built here when not given).
+    """
+    fo = (f1, f2)[2 - fl]
+    if fl == 1:
+        pw, _, _ = f1.world(uv[:, 0], uv[:, 1], ph1)
+        Rf, _, tf, _ = f2.frame(ph2)
+    else:
+        pw, _, _ = f2.world(uv[:, 0], uv[:, 1], ph2)
+        Rf, _, tf, _ = f1.frame(ph1)
+    loc = np.einsum("nji,nj->ni", Rf, pw.r - tf)
+    u_of_r = u_of_r or _u_of_radius(fo)
+    g = np.stack([u_of_r(np.hypot(loc[:, 0], loc[:, 1])), loc[:, 2], ph2], -1)
+    rr = newton(corner_system(f1, f2, ph1, fl, uv), g, tol=tol, maxiter=15, raise_on_failure=False, max_backtracks=6)
+    return rr, fo.constraints(fo.surface.evaluate(rr.x[:, 0], rr.x[:, 1]), rr.x[:, 0])
+
+
 def _bounded_contacts(pair, f1, f2, phis, sel, phi2_guess, opts, samples: int = 9):
     """First touch of the bounded flanks along their boundaries, where tangency is not inside.
 
@@ -108,17 +131,7 @@ def _bounded_contacts(pair, f1, f2, phis, sel, phi2_guess, opts, samples: int = 
                 ph2s.append(ph2g[P])
                 shapes.append(tt.shape)
             uv, ph1, ph2 = np.concatenate(uvs), np.concatenate(ph1s), np.concatenate(ph2s)
-            if fl == 1:
-                pw, _, _ = f1.world(uv[:, 0], uv[:, 1], ph1)
-                Rf, _, tf, _ = f2.frame(ph2)
-            else:
-                pw, _, _ = f2.world(uv[:, 0], uv[:, 1], ph2)
-                Rf, _, tf, _ = f1.frame(ph1)
-            loc = np.einsum("nji,nj->ni", Rf, pw.r - tf)
-            g = np.stack([u_of_r(np.hypot(loc[:, 0], loc[:, 1])), loc[:, 2], ph2], -1)
-            rr = newton(corner_system(f1, f2, ph1, fl, uv), g, tol=opts.tol, maxiter=15, raise_on_failure=False,
-                        max_backtracks=6)
-            con = fo.constraints(fo.surface.evaluate(rr.x[:, 0], rr.x[:, 1]), rr.x[:, 0])
+            rr, con = onto_other_flank(f1, f2, fl, uv, ph1, ph2, opts.tol, u_of_r)
             out, k = [], 0
             for uvb, shape in zip(uvs, shapes):
                 sl = slice(k, k + len(uvb))

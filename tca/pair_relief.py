@@ -34,10 +34,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from .contact import corner_system, edge_edge_system, edge_system, tangency_system
+from .contact import edge_edge_system, edge_system, tangency_system
 from .newton import newton
 from .pair import GearPair
-from .pair_bounded import _tip_points, _u_of_radius
+from .pair_bounded import _tip_points, onto_other_flank
 from .pair_result import ContactKind, ReferencePairSolution, TCAOptions, _flanks
 
 __all__ = ["relief_pass", "RIDGE_Z_MAX", "RIDGE_Z_MIN"]
@@ -62,22 +62,9 @@ def _project(f1, f2, fl: int, phi1: np.ndarray, ph2g: np.ndarray, uv: np.ndarray
     """Points uv (n, m, 2) of flank fl put on the other flank at phi1 (n,): x (n, m, 5) and phi2 (n, m),
     -inf where the solve failed or the point lands outside the other working area."""
     n, m = uv.shape[:2]
-    fo = (f1, f2)[2 - fl]
     flat = uv.reshape(-1, 2)
-    ph1 = np.repeat(phi1, m)
-    ph2 = np.repeat(ph2g, m)
-    if fl == 1:
-        pw, _, _ = f1.world(flat[:, 0], flat[:, 1], ph1)
-        Rf, _, tf, _ = f2.frame(ph2)
-    else:
-        pw, _, _ = f2.world(flat[:, 0], flat[:, 1], ph2)
-        Rf, _, tf, _ = f1.frame(ph1)
-    loc = np.einsum("nji,nj->ni", Rf, pw.r - tf)
-    guess = np.stack([_u_of_radius(fo)(np.hypot(loc[:, 0], loc[:, 1])), loc[:, 2], ph2], -1)
     with np.errstate(divide="ignore", invalid="ignore"):  # points run off the other flank: not converged
-        rr = newton(corner_system(f1, f2, ph1, fl, flat), guess, tol=opts.tol, maxiter=15, raise_on_failure=False,
-                    max_backtracks=6)
-        con = fo.constraints(fo.surface.evaluate(rr.x[:, 0], rr.x[:, 1]), rr.x[:, 0])
+        rr, con = onto_other_flank(f1, f2, fl, flat, np.repeat(phi1, m), np.repeat(ph2g, m), opts.tol)
     ok = rr.converged & np.all(con <= opts.area_tol, -1)
     x = np.empty((n * m, 5))
     own, oth = (slice(0, 2), slice(2, 4)) if fl == 1 else (slice(2, 4), slice(0, 2))
