@@ -261,7 +261,8 @@ def foot_points(f: PlacedFlank, uv0, phi: float, x: np.ndarray, tol: float = 1e-
     dot = lambda a, b: np.einsum("ij,ij->i", a, b)  # noqa: E731
     act = np.arange(S)
     for _ in range(maxit):  # Newton on |x - r(u, v)|^2 / 2 (second derivatives of the surface), unconverged points
-        w, _, _ = f.world(u[act], v[act], ph[act])
+        with np.errstate(invalid="ignore", divide="ignore"):  # a point run off the surface: non-finite, handled below
+            w, _, _ = f.world(u[act], v[act], ph[act])
         d = x[act] - w.r
         a11 = dot(w.r_u, w.r_u) - dot(d, w.r_uu)
         a12 = dot(w.r_u, w.r_v) - dot(d, w.r_uv)
@@ -278,14 +279,15 @@ def foot_points(f: PlacedFlank, uv0, phi: float, x: np.ndarray, tol: float = 1e-
         act = act[~done & ~bad]
         if not len(act):
             break
-    w, _, _ = f.world(u, v, ph)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        w, _, _ = f.world(u, v, ph)
     return w, ok & np.all(np.isfinite(w.r), axis=1), np.stack([u, v], 1)
 
 
 def area_margin(f: PlacedFlank, uv: np.ndarray) -> np.ndarray:
     """Largest working-area constraint (fillet, tip, face ends; :meth:`tca.gear.Gear.constraints`) [mm] of
     points (u, v) (S, 2) of flank f: <= 0 inside."""
-    loc = f.surface.evaluate(uv[:, 0], uv[:, 1])
-    with np.errstate(invalid="ignore"):
+    with np.errstate(invalid="ignore", divide="ignore"):  # points off the surface: non-finite, outside
+        loc = f.surface.evaluate(uv[:, 0], uv[:, 1])
         c = f.constraints(loc, uv[:, 0]).max(axis=-1)
     return np.where(np.isfinite(c), c, np.inf)

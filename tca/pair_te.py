@@ -54,7 +54,7 @@ from .pair import GearPair
 from .pair_result import ContactKind, PairTCAResult
 
 __all__ = ["MeshTE", "MeshContact", "NeighbourContact", "mesh_contact", "PathOfContact", "path_of_contact", "NAMED", "GRID",
-           "POSITIONS", "grid_index", "path_angle", "position_angle", "TIE_MM"]
+           "POSITIONS", "grid_index", "path_angle", "position_angle", "TIE_MM", "tied_branches"]
 
 TIE_MM = 1e-6  # separation [mm] below which two pairs' TEs are equal (conjugate flanks; far below the elastic approach)
 GRID = ("max_te", "min_te")  # positions read off the TCA grid
@@ -222,6 +222,13 @@ def _depth(ok: np.ndarray, i0: int) -> int:
     return min(i0 - lo, hi - i0)
 
 
+def tied_branches(pair: GearPair, val: np.ndarray) -> np.ndarray:
+    """Mask of the branch values ``val`` [rad] (one angle) within :data:`TIE_MM` of the largest, measured at
+    the driven gear's pitch radius (a length scale for the tie test)."""
+    with np.errstate(invalid="ignore"):
+        return np.isfinite(val) & ((np.max(val) - val) * max(pair.gear2.r_p, 1.0) <= TIE_MM)
+
+
 def mesh_contact(result: PairTCAResult, phi: float) -> MeshContact:
     """The contact of a pair TCA's drive at driving-gear angle ``phi`` [rad] (module docstring)."""
     pair = result.pair
@@ -235,8 +242,7 @@ def mesh_contact(result: PairTCAResult, phi: float) -> MeshContact:
     ref = result.reference
     ok = (ref.kind != ContactKind.NONE) & np.all(np.isfinite(ref.x), axis=1)
     p1, p2 = 2 * math.pi / pair.gear1.teeth, 2 * math.pi / pair.gear2.teeth
-    arm = max(pair.gear2.r_p, 1.0)  # a length scale for the tie test; the exact arm follows below
-    tied = [q for q in range(len(ks)) if math.isfinite(val[q]) and (top - val[q]) * arm <= TIE_MM]
+    tied = [int(q) for q in np.flatnonzero(tied_branches(pair, val))]
     cands = []
     for q in tied:
         i0, w, ex = _grid_place(ref, phi, int(ks[q]), p1)

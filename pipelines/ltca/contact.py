@@ -63,7 +63,7 @@ from tca.pair import GearPair
 from tca.pair_bounded import boundary_curve
 from tca.pair_result import ContactKind
 from tca.planetary_mesh import MeshTE
-from tca.pair_te import TIE_MM, mesh_contact
+from tca.pair_te import mesh_contact, tied_branches
 
 from pipelines.ltca.compliance import flattening
 from pipelines.stress.sizing import hertz_contact
@@ -132,8 +132,8 @@ def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: fl
     if not math.isfinite(te):
         raise GeometryError(f"{pair.gear1.name}-{pair.gear2.name}", "no contact", f"at phi = {math.degrees(phi):.6f} deg")
     # the pair in contact; ties (conjugate flanks) resolved as everywhere (tca.pair_te.mesh_contact)
-    near = np.isfinite(val) & ((te - val) * max(pair.gear2.r_p, 1.0) <= TIE_MM)
-    k = mesh_contact(mte.result, float(phi)).k if near.sum() > 1 else int(ks[int(np.argmax(val))])
+    tied = tied_branches(pair, val).sum() > 1
+    k = mesh_contact(mte.result, float(phi)).k if tied else int(ks[int(np.argmax(val))])
     m1, m2 = pair.mounts()
     f1, f2 = PlacedFlank(pair.gear1, pair.side1, m1), PlacedFlank(pair.gear2, pair.side2, m2)
     p1, p2 = 2 * math.pi / pair.gear1.teeth, 2 * math.pi / pair.gear2.teeth
@@ -317,7 +317,7 @@ def edge_slices(f1: PlacedFlank, f2: PlacedFlank, par, phi1: float, phi2: float,
 
     Each boundary curve (:func:`tca.pair_bounded.boundary_curve`) at the flanks' angles phi1, phi2
     [rad] is cut into pieces of arc length about ``ds`` [mm]; the separation of a piece's midpoint
-    is its distance from the other flank along that flank's normal (foot point by Gauss–Newton).
+    is its distance from the other flank along that flank's normal (:func:`tca.contact.foot_points`).
     Returns xi (arc length along the boundary from its start: z_min for a tip, the form circle for a face
     end), gear-1 and gear-2 points (S, 3), the unit
     normal out of gear 1's tooth, separations [mm], converged mask, piece lengths [mm] and the
@@ -350,28 +350,14 @@ def separation(f1: PlacedFlank, f2: PlacedFlank, par, x, phi1: float, phi2: floa
 
     Gear 1's flank at angle phi1, gear 2's at phi2 [rad]; ``par`` (u1, v1, u2, v2) [mm] a point near the
     line (start of the iterations), ``gap0`` [mm] a starting separation. Foot points P1 on flank 1
-    (Gauss–Newton on (x - r1)·r1_u = (x - r1)·r1_v = 0), then the normal line P1 + s n1 meets flank 2
+    (:func:`tca.contact.foot_points`), then the normal line P1 + s n1 meets flank 2
     at P2 (Newton on r2(u2, v2) - P1 - s n1 = 0): s is the separation [mm] (> 0 apart). Returns P1,
     n1, P2, s and the mask of points where both solves converged with both points inside their flanks'
     working areas (:func:`in_area`); ``with_margin``: also the larger of the two :func:`area_margin`.
     """
     S = len(x)
-    u = np.full(S, float(par[0]))
-    v = np.full(S, float(par[1]))
-    ph1 = np.full(S, float(phi1))
-    ok1 = np.zeros(S, bool)
-    for _ in range(maxit):
-        w, _, _ = f1.world(u, v, ph1)
-        d = x - w.r
-        a11, a12, a22 = (np.einsum("ij,ij->i", a, b) for a, b in ((w.r_u, w.r_u), (w.r_u, w.r_v), (w.r_v, w.r_v)))
-        b1, b2 = np.einsum("ij,ij->i", d, w.r_u), np.einsum("ij,ij->i", d, w.r_v)
-        det = a11 * a22 - a12 * a12
-        du, dv = (a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det
-        u, v = u + du, v + dv
-        ok1 = np.abs(du) + np.abs(dv) < tol
-        if ok1.all():
-            break
-    w1, _, _ = f1.world(u, v, ph1)
+    w1, ok1, uv1 = foot_points(f1, par[:2], phi1, x, tol, maxit)
+    u, v = uv1[:, 0], uv1[:, 1]
     P1, n1 = w1.r, w1.n
     u2 = np.full(S, float(par[2]))
     v2 = np.full(S, float(par[3]))
