@@ -294,7 +294,7 @@ def mesh_gear(gear: Gear, opts: MeshOptions = MeshOptions(), centre: int = 0, fo
     teeth = model_teeth(gear, opts.teeth, centre)
     ci = teeth.index(centre % gear.teeth)
     B = gear.face_width
-    extra = [(int(j) % gear.teeth, f) for j, f in others if int(j) % gear.teeth in teeth and int(j) % gear.teeth != teeth[ci]]
+    extra = [(j, f) for j, f in ((int(j) % gear.teeth, f) for j, f in others) if j in teeth and j != teeth[ci]]
     if extra and focus is None:
         raise InputError("others", [j for j, _ in extra], "further foci only with a focus on the centre tooth")
     if opts.gap is None:

@@ -148,9 +148,8 @@ def part_elements(gear, sizes: dict, teeth: int, extent_z: float = 0.0, zones: t
 
 def estimate_resources(scene: Scene) -> ResourceEstimate:
     """Element, DOF and memory estimate of the scene's model from its size rules (no meshing)."""
-    def zones(p):
-        teeth = set(p.teeth)
-        fs = [p.focus] + [f for j, f in p.others if j in teeth and j != p.centre % p.gear.teeth]
+    def zones(p):  # the scene puts further foci only on modelled teeth (pipelines.stress.scene.pair_scene)
+        fs = [p.focus] + [f for _, f in p.others]
         return tuple((f.z, f.extent_z) for f in fs) if len(fs) > 1 else ()
 
     n = sum(part_elements(p.gear, dataclasses.asdict(p.sizes), p.sizes.teeth, getattr(p.focus, "extent_z", 0.0),

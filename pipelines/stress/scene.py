@@ -256,7 +256,9 @@ def pair_scene(pair: GearPair, result: PairTCAResult, phi1: float, torque: float
     itf = _interface(f"{g1.name}-{g2.name}", "a", pair, c, torque, rules, E, nu, frame, (g1.name, g2.name), ("", ""),
                      "driven")
     reach = rules.reach(_load(pair, c, torque), min(g1.face_width, g2.face_width))
-    near = [o for o in c.others if o.gap <= reach] if reach > 0 else []
+    modelled = set(itf.driver.teeth), set(itf.driven.teeth)
+    near = [o for o in c.others if o.gap <= reach and (-o.k) % g1.teeth in modelled[0]
+            and (-o.k) % g2.teeth in modelled[1]] if reach > 0 else []
     if near:  # neighbouring pairs that may close under load: refined around their own contact points
         fd, fn = itf.driver.focus, itf.driven.focus
         pars = [neighbour_params(pair, c, o, max(fd.extent_u, fn.extent_u)) for o in near]

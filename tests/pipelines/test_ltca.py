@@ -182,15 +182,20 @@ def test_tip_edge_contact_shares_match_full_fe(coarse):
     assert p["share_error"] <= TARGETS["load_share"]
 
 
+def _coarse_spur(**tables):
+    """The shipped spur pair (stress_spur_pair.toml, plus ``tables``) with a coarse flank grid (1.0 x 1.4 mm)
+    and its refine-0.5 FE."""
+    d = copy.deepcopy(load_case("pipelines/cases/stress_spur_pair.toml").data)
+    d.update({"ltca": {"positions": 10}, "mesh": {"refine": 0.5, "teeth": 3}}, **tables)
+    case, _ = read_ltca_case(Table(d, ""))
+    return build_model(case, LTCAOptions(positions=10, torques=(case.torque,), profile_size=1.0, axial_size=1.4))
+
+
 def test_aligned_spur_pair_double_contact_matches_full_fe():
     """An aligned, unmodified spur pair (line contact, conjugate flanks: two pairs tied in TE) at the start of
     the cycle, in double contact: the LTCA on a coarse grid shares the load as the refine-0.5 FE does."""
-    d = copy.deepcopy(load_case("pipelines/cases/stress_spur_pair.toml").data)
-    d["ltca"] = {"positions": 10}
-    d["mesh"] = {"refine": 0.5, "teeth": 3}
-    case, _ = read_ltca_case(Table(d, ""))
-    model = build_model(case, LTCAOptions(positions=10, torques=(case.torque,), profile_size=1.0, axial_size=1.4))
-    rows, _, _ = solve_positions(model, [np.radians(-14.2105)], (case.torque,))
+    model = _coarse_spur()
+    rows, _, _ = solve_positions(model, [np.radians(-14.2105)], (model.case.torque,))
     assert rows[0]["pairs_loaded"] == 2
     p = fe_check(model, rows, [0])["positions"][0]
     assert min(p["fe_shares"]["pinion0-wheel0"], p["fe_shares"]["pinion1-wheel1"]) > 0.4
@@ -203,13 +208,8 @@ def test_misaligned_spur_pair_edge_contact_matches_full_fe():
     """An uncrowned spur pair misaligned by 2 arcmin touches at a face end (TCA edge contact): under load the
     contact runs from that edge along the line into the face. The LTCA keeps the line through the edge point
     besides the boundary slices; with the boundaries alone it was 2.9 times too compliant (-120 vs -42 arcsec)."""
-    d = copy.deepcopy(load_case("pipelines/cases/stress_spur_pair.toml").data)
-    d["ltca"] = {"positions": 10}
-    d["mesh"] = {"refine": 0.5, "teeth": 3}
-    d["misalignment"] = {"d_gamma_arcmin": 2.0}
-    case, _ = read_ltca_case(Table(d, ""))
-    model = build_model(case, LTCAOptions(positions=10, torques=(case.torque,), profile_size=1.0, axial_size=1.4))
-    rows, _, _ = solve_positions(model, [np.radians(-11.368)], (case.torque,))
+    model = _coarse_spur(misalignment={"d_gamma_arcmin": 2.0})
+    rows, _, _ = solve_positions(model, [np.radians(-11.368)], (model.case.torque,))
     p = fe_check(model, rows, [0])["positions"][0]
     assert p["rotation_error"] <= TARGETS["elastic_rotation"]
     assert p["share_error"] <= TARGETS["load_share"]
