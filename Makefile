@@ -35,7 +35,7 @@ test: install
 
 bench: install
 	$(BIN)/python -m pytest -q -m bench
-	$(BIN)/python -m pipelines.bench --out $(OUT)/bench
+	$(BIN)/python -m benchmarks --out $(OUT)/bench
 
 clean:
 	rm -rf $(OUT) .pytest_cache build *.egg-info

@@ -14,7 +14,8 @@ from dataclasses import replace
 from pathlib import Path
 
 from pipelines.cases import CASES_DIR, load_case
-from pipelines.stress import read_stress_case, run_stress
+from pipelines.cases.stress import read_stress_case
+from pipelines.models.stress.run import run_stress
 
 
 def main(out: Path, refine: float = 0.35) -> dict:  # the summary

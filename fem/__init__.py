@@ -5,10 +5,10 @@ their supports (``Fixed``, ``Rigid``) and loads (``Traction``, torques), materia
 pairs and options. See ``fem.solve`` for the steps and each module for its maths.
 """
 
-from .material import STEEL, Material
-from .model import Body, ContactOptions, ContactPair, FEModel, Fixed, Rigid, SolverOptions, Traction
-from .result import FEResult, PairResult, SolveInfo, torque_balance_error
-from .analysis import solve
+from fem.material import STEEL, Material
+from fem.model import Body, ContactOptions, ContactPair, FEModel, Fixed, Rigid, SolverOptions, Traction
+from fem.result import FEResult, PairResult, SolveInfo, torque_balance_error
+from fem.analysis import solve
 
 __all__ = [
     "Material",

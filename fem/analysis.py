@@ -2,7 +2,7 @@
 
 Steps (timings reported in ``FEResult.info.timings``):
 
-1. element stiffness (C3D8I-like or C3D8) and block assembly of K (``fem.elements``, ``fem.assembly``);
+1. element stiffness (C3D8I-like or C3D8) and block assembly of K (``fem.elements.hex8``, ``fem.assembly``);
 2. supports by elimination, K_r = T^T K T, f_r = T^T (f - K u_p) + f_ref (``fem.constraints``);
 3. contact geometry from the undeformed mesh; candidate slave nodes g0 < search_gap, and the
    seed (``fem.contact``);
@@ -15,9 +15,9 @@ Steps (timings reported in ``FEResult.info.timings``):
    S = [[H, -B^T], [-B, -W]] in the notation of ``fem.contact``, and the forward substitution
    gives f^_F and the gaps g^ of the load with the free rigid DOFs clamped. The active-set
    penalty problem is solved on these k + n_F unknowns by dense algebra, and one backward
-   substitution gives all DOFs (``fem.linsolve``): no refactorization per contact iteration;
+   substitution gives all DOFs (``fem.la.linsolve``): no refactorization per contact iteration;
 5. checks: no slave node outside the candidate set penetrates; every Newton-like loop converged;
-6. stresses by Gauss-point extrapolation and nodal averaging (``fem.stress``); reactions.
+6. stresses by Gauss-point extrapolation and nodal averaging (``fem.recovery``); reactions.
 """
 
 from __future__ import annotations
@@ -27,17 +27,17 @@ import time
 import numpy as np
 import scipy.sparse as sp
 
-from mesher.hexmesh import HexMesh
-from tca.errors import ConvergenceError, InputError
+from fem.mesh.hexmesh import HexMesh
+from fem.errors import FEConvergenceError, FEInputError
 
-from . import stress as st
-from .assembly import assemble_blocks, surface_load
-from .constraints import known_names, reduction
-from .contact import contact_patch, contact_set, penalty_active_set
-from .elements import hex8_matrices
-from .linsolve import schur_system
-from .model import FEModel
-from .result import FEResult, PairResult, SolveInfo
+from fem import recovery as st
+from fem.assembly import assemble_blocks, surface_load
+from fem.constraints import known_names, reduction
+from fem.contact import contact_patch, contact_set, penalty_active_set
+from fem.elements.hex8 import hex8_matrices
+from fem.la.linsolve import schur_system
+from fem.model import FEModel
+from fem.result import FEResult, PairResult, SolveInfo
 
 __all__ = ["solve"]
 
@@ -48,7 +48,7 @@ def _cell_materials(mesh: HexMesh, model: FEModel):
     E = np.empty(mesh.n_cells)
     for b in model.bodies:
         if b.name not in mesh.bodies:
-            raise InputError("bodies.name", b.name, "a body of the mesh (" + ", ".join(mesh.bodies) + ")")
+            raise FEInputError("bodies.name", b.name, "a body of the mesh (" + ", ".join(mesh.bodies) + ")")
         c = mesh.body_cells(b.name)
         lam[c], mu[c], E[c] = b.material.lam, b.material.mu, b.material.E
     return lam, mu, E
@@ -59,7 +59,7 @@ def _external_load(mesh: HexMesh, model: FEModel) -> np.ndarray:
     for b in model.bodies:
         for i, load in enumerate(b.loads):
             if load.set not in mesh.face_sets:
-                raise InputError(f"bodies[{b.name!r}].loads[{i}].set", load.set, f"a face set of the mesh ({known_names(mesh.face_sets)})")
+                raise FEInputError(f"bodies[{b.name!r}].loads[{i}].set", load.set, f"a face set of the mesh ({known_names(mesh.face_sets)})")
             nodes, forces = surface_load(mesh.points, mesh.face_nodes(load.set), load.traction)
             for c in range(3):
                 f[c::3] += np.bincount(nodes, weights=forces[:, c], minlength=mesh.n_points)
@@ -73,7 +73,7 @@ def _closed_area(cs, sel, gap, sol) -> float:
 
 
 def solve(mesh: HexMesh, model: FEModel) -> FEResult:
-    """Solve the model on the mesh; raises InputError, ConvergenceError or GearfeError."""
+    """Solve the model on the mesh; raises FEInputError, FEConvergenceError or FEError."""
     t = {}
     t0 = time.perf_counter()
     lam_c, mu_c, E_c = _cell_materials(mesh, model)
@@ -158,7 +158,7 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
             worst = int(np.argmin(np.where(outside, gap_all, np.inf)))
             pair = model.contacts[cs.pair[worst]]
             where = f"node {int(cs.node[worst])} outside the candidate set (raise search_gap = {pair.search_gap} mm)"
-            raise ConvergenceError(f"contact of pair {pair.name!r}", where, float(-gap_all[worst]), sol.iterations)
+            raise FEConvergenceError(f"contact of pair {pair.name!r}", where, float(-gap_all[worst]), sol.iterations)
 
     t1 = time.perf_counter()
     sq = st.gauss_stress(em.geometry, mesh.cells, u, em.condensation, lam_c, mu_c)

@@ -25,10 +25,10 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from mesher.hexmesh import HexMesh
-from tca.errors import InputError
+from fem.mesh.hexmesh import HexMesh
+from fem.errors import FEInputError
 
-from .model import RIGID_DOFS, FEModel, Fixed, Rigid
+from fem.model import RIGID_DOFS, FEModel, Fixed, Rigid
 
 __all__ = ["known_names", "set_nodes", "RigidRef", "Reduction", "reduction", "axis_frame"]
 
@@ -40,12 +40,12 @@ def known_names(names) -> str:
 
 
 def set_nodes(mesh: HexMesh, name: str, field: str) -> np.ndarray:
-    """Node indices of a point set or face set called ``name`` (InputError naming `field` if absent)."""
+    """Node indices of a point set or face set called ``name`` (FEInputError naming `field` if absent)."""
     if name in mesh.point_sets:
         return mesh.point_sets[name]
     if name in mesh.face_sets:
         return mesh.face_set_points(name)
-    raise InputError(field, name, f"a point or face set of the mesh ({known_names(set(mesh.point_sets) | set(mesh.face_sets))})")
+    raise FEInputError(field, name, f"a point or face set of the mesh ({known_names(set(mesh.point_sets) | set(mesh.face_sets))})")
 
 
 def axis_frame(axis) -> np.ndarray:
@@ -53,7 +53,7 @@ def axis_frame(axis) -> np.ndarray:
     e3 = np.asarray(axis, float)
     n = np.linalg.norm(e3)
     if not n > 0:
-        raise InputError("reference axis", tuple(axis), "a nonzero vector")
+        raise FEInputError("reference axis", tuple(axis), "a nonzero vector")
     e3 = e3 / n
     # e1: the global x axis made normal to the axis (y if the axis is near x), so that the frame
     # of an axis along z is the global one
@@ -121,33 +121,33 @@ def reduction(mesh: HexMesh, model: FEModel) -> Reduction:
     names = set(mesh.bodies)
     for b in model.bodies:
         if b.name not in names:
-            raise InputError("bodies.name", b.name, "a body of the mesh (" + ", ".join(mesh.bodies) + ")")
+            raise FEInputError("bodies.name", b.name, "a body of the mesh (" + ", ".join(mesh.bodies) + ")")
         if not b.supports:
-            raise InputError(f"bodies[{b.name!r}].supports", (), "at least one Fixed or Rigid support (an unsupported body is singular)")
+            raise FEInputError(f"bodies[{b.name!r}].supports", (), "at least one Fixed or Rigid support (an unsupported body is singular)")
         body_nodes = np.unique(mesh.cells[mesh.body_cells(b.name)])
         held = []
         for i, s in enumerate(b.supports):
             field = f"bodies[{b.name!r}].supports[{i}].set"
             nodes = set_nodes(mesh, s.set, field)
             if not np.isin(nodes, body_nodes).all():
-                raise InputError(field, s.set, f"a set of nodes of body {b.name!r}")
+                raise FEInputError(field, s.set, f"a set of nodes of body {b.name!r}")
             held.append(nodes)
             if isinstance(s, Fixed):
                 for c in s.components:
                     fixed[3 * nodes + c] = True
             else:
                 if s.reference not in mesh.reference_points:
-                    raise InputError(f"bodies[{b.name!r}].supports[{i}].reference", s.reference,
+                    raise FEInputError(f"bodies[{b.name!r}].supports[{i}].reference", s.reference,
                                      "a reference point of the mesh (" + ", ".join(mesh.reference_points) + ")")
                 ties.append((b.name, s, nodes))
         support_nodes[b.name] = np.unique(np.concatenate(held))
     missing = names - {b.name for b in model.bodies}
     if missing:
-        raise InputError("bodies", sorted(missing), "an entry with supports for every body of the mesh")
+        raise FEInputError("bodies", sorted(missing), "an entry with supports for every body of the mesh")
     for k, (body, s, nodes) in enumerate(ties):
         nodes = nodes[~fixed.reshape(-1, 3)[nodes].all(axis=1)]
         if np.any(tied[nodes] >= 0):
-            raise InputError(f"bodies[{body!r}]", s.set, "a node tied to one reference node only")
+            raise FEInputError(f"bodies[{body!r}]", s.set, "a node tied to one reference node only")
         tied[nodes] = k
     free_dof = ~fixed & np.repeat(tied < 0, 3)
     n_free = int(free_dof.sum())

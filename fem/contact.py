@@ -86,17 +86,17 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 from scipy.spatial import cKDTree
 
-from mesher.hexmesh import HEX_FACES, HexMesh
-from tca.errors import ConvergenceError, GearfeError, InputError
+from fem.mesh.hexmesh import HEX_FACES, HexMesh
+from fem.errors import FEConvergenceError, FEError, FEInputError
 
 try:
     from threadpoolctl import threadpool_limits
 except ImportError:  # pragma: no cover - optional: without it the dense solves use the BLAS default threads
     threadpool_limits = None
 
-from .assembly import face_node_areas
-from .constraints import known_names
-from .model import ContactOptions, ContactPair
+from fem.assembly import face_node_areas
+from fem.constraints import known_names
+from fem.model import ContactOptions, ContactPair
 
 __all__ = ["ContactSet", "contact_set", "ActiveSetSolution", "active_set", "penalty_active_set", "bilinear",
            "project_to_faces", "surface_mass", "ContactPatch", "contact_patch"]
@@ -163,10 +163,10 @@ class ContactSet:
 
 def _faces(mesh: HexMesh, name: str, field: str) -> np.ndarray:
     if name not in mesh.face_sets:
-        raise InputError(field, name, f"a face set of the mesh ({known_names(mesh.face_sets)})")
+        raise FEInputError(field, name, f"a face set of the mesh ({known_names(mesh.face_sets)})")
     fs = mesh.face_sets[name]
     if len(fs) == 0:
-        raise InputError(field, name, "a non-empty face set")
+        raise FEInputError(field, name, "a non-empty face set")
     return fs
 
 
@@ -261,7 +261,7 @@ def _check_master_resolution(mesh, pair, fs, fm):
     size_m = np.sqrt(face_node_areas(mesh.points, mesh.cells[fm[:, 0][:, None], HEX_FACES[fm[:, 1]]]).sum(1))
     ratio = float(np.median(size_m) / np.median(size_s))
     if ratio > MAX_MASTER_COARSENESS:
-        raise InputError(f"contacts[{pair.name!r}]", (pair.slave, pair.master),
+        raise FEInputError(f"contacts[{pair.name!r}]", (pair.slave, pair.master),
                          f"a master surface about as fine as the slave in the contact zone (face-size ratio <= {MAX_MASTER_COARSENESS})",
                          f"measured {ratio:.2f}: exchange slave and master, or refine the master")
 
@@ -281,7 +281,7 @@ def contact_set(mesh: HexMesh, pairs: tuple[ContactPair, ...], E_cell: np.ndarra
         fm = _faces(mesh, pair.master, f"contacts[{pair.name!r}].master")
         sb, mb = mesh.cell_body[fs[:, 0]], mesh.cell_body[fm[:, 0]]
         if len(np.unique(sb)) != 1 or len(np.unique(mb)) != 1 or sb[0] == mb[0]:
-            raise InputError(f"contacts[{pair.name!r}]", (pair.slave, pair.master), "slave and master face sets each on one body, two different bodies")
+            raise FEInputError(f"contacts[{pair.name!r}]", (pair.slave, pair.master), "slave and master face sets each on one body, two different bodies")
         snodes, sw, xs0, area, ns, h = _slave_points(mesh, fs, order)
         E = min(E_cell[fs[:, 0]].min(), E_cell[fm[:, 0]].min())
         # projection on the master faces: nearest face centres first
@@ -381,7 +381,7 @@ def contact_patch(points: np.ndarray, forces: np.ndarray, normal, centre=None, k
     eigenvectors of the tangential second-moment tensor, or ``major`` (3,) and n x major when given.
     """
     if kind not in PATCH_FACTORS:
-        raise InputError("kind", kind, "'point' or 'line'")
+        raise FEInputError("kind", kind, "'point' or 'line'")
     F = np.clip(np.asarray(forces, float), 0.0, None)
     P = float(F.sum())
     if P <= 0.0:
@@ -428,7 +428,7 @@ def _solve_set(W, B, H, ghat, fhat, k, A, h_scale):
         try:
             cf = sla.cho_factor(P)
         except np.linalg.LinAlgError:
-            raise GearfeError("contact compliance matrix is not positive definite on the active set") from None
+            raise FEError("contact compliance matrix is not positive definite on the active set") from None
         Ba = B[a]
         Z = sla.cho_solve(cf, np.column_stack([Ba, ghat[a]])) if nF else sla.cho_solve(cf, ghat[a][:, None])
     else:
@@ -441,7 +441,7 @@ def _solve_set(W, B, H, ghat, fhat, k, A, h_scale):
         # stiffness with everything else clamped (h_scale = diag of the reduced K there)
         loose = np.diag(Hs) <= 1e-9 * h_scale
         if loose.any():
-            raise GearfeError(
+            raise FEError(
                 f"free rigid DOF(s) {np.flatnonzero(loose).tolist()} are not held by any active contact: "
                 "the contact does not close (check the contact seed, the search gap and the load direction)"
             )
@@ -466,10 +466,10 @@ def active_set(W, B, H, ghat, fhat, k, active0, max_iterations: int, h_scale) ->
         viol = float(np.abs(g[changed]).max())  # [mm] gap of the nodes that switch
         key = A_new.tobytes()
         if key in seen:
-            raise ConvergenceError("contact active set", "a repeated set (cycling)", viol, it)
+            raise FEConvergenceError("contact active set", "a repeated set (cycling)", viol, it)
         seen.add(key)
         A = A_new
-    raise ConvergenceError("contact active set", f"{int(changed.sum())} nodes still switching", viol, max_iterations)
+    raise FEConvergenceError("contact active set", f"{int(changed.sum())} nodes still switching", viol, max_iterations)
 
 
 def penalty_active_set(W, B, H, ghat, fhat, k, area, active0, opts: ContactOptions, h_scale, peak=None) -> ActiveSetSolution:
@@ -491,7 +491,7 @@ def _penalty_active_set(W, B, H, ghat, fhat, k, area, active0, opts, h_scale, pe
     while pen > opts.max_penetration:
         raises += 1
         if raises > 12:
-            raise ConvergenceError("penalty penetration", f"max_penetration = {opts.max_penetration} mm", pen, raises)
+            raise FEConvergenceError("penalty penetration", f"max_penetration = {opts.max_penetration} mm", pen, raises)
         scale *= max(2.0, 1.5 * pen / opts.max_penetration)
         sol = active_set(W, B, H, ghat, fhat, scale * k, sol.active, opts.max_iterations, h_scale)
         pen = float(np.max(-sol.gap[sol.active], initial=0.0))
@@ -505,5 +505,5 @@ def _penalty_active_set(W, B, H, ghat, fhat, k, area, active0, opts, h_scale, pe
                 break
             scale, sol = 2.0 * scale, sol2
         else:
-            raise ConvergenceError("penalty doubling check", f"penalty_check_tol = {opts.penalty_check_tol}", change, 8)
+            raise FEConvergenceError("penalty doubling check", f"penalty_check_tol = {opts.penalty_check_tol}", change, 8)
     return ActiveSetSolution(sol.lam, sol.u_free, sol.gap, sol.active, sol.iterations, scale, change)

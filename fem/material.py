@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from tca.errors import InputError
+from fem.errors import FEInputError
 
 __all__ = ["Material", "STEEL"]
 
@@ -26,9 +26,9 @@ class Material:
 
     def __post_init__(self):
         if not (self.E > 0.0):
-            raise InputError("material.E", self.E, "a Young's modulus > 0 MPa")
+            raise FEInputError("material.E", self.E, "a Young's modulus > 0 MPa")
         if not (-1.0 < self.nu < 0.5):
-            raise InputError("material.nu", self.nu, "a Poisson's ratio in (-1, 0.5)")
+            raise FEInputError("material.nu", self.nu, "a Poisson's ratio in (-1, 0.5)")
 
     @property
     def lam(self) -> float:

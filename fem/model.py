@@ -20,9 +20,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from tca.errors import InputError
+from fem.errors import FEInputError
 
-from .material import STEEL, Material
+from fem.material import STEEL, Material
 
 __all__ = [
     "RIGID_DOFS",
@@ -45,9 +45,9 @@ def _vec3(name: str, v) -> tuple[float, float, float]:
     try:
         t = tuple(float(x) for x in v)
     except TypeError:
-        raise InputError(name, v, "a sequence of 3 numbers") from None
+        raise FEInputError(name, v, "a sequence of 3 numbers") from None
     if len(t) != 3 or not all(math.isfinite(x) for x in t):
-        raise InputError(name, v, "3 finite numbers")
+        raise FEInputError(name, v, "3 finite numbers")
     return t
 
 
@@ -61,7 +61,7 @@ class Fixed:
     def __post_init__(self):
         comps = tuple(int(c) for c in self.components)
         if not comps or any(c not in (0, 1, 2) for c in comps) or len(set(comps)) != len(comps):
-            raise InputError(f"Fixed({self.set!r}).components", self.components, "distinct values from 0, 1, 2 (x, y, z)")
+            raise FEInputError(f"Fixed({self.set!r}).components", self.components, "distinct values from 0, 1, 2 (x, y, z)")
         object.__setattr__(self, "components", comps)
 
 
@@ -85,19 +85,19 @@ class Rigid:
         free = tuple(self.free)
         bad = [d for d in free if d not in RIGID_DOFS]
         if bad or len(set(free)) != len(free):
-            raise InputError(f"Rigid({self.set!r}).free", self.free, f"distinct names from {RIGID_DOFS}")
+            raise FEInputError(f"Rigid({self.set!r}).free", self.free, f"distinct names from {RIGID_DOFS}")
         object.__setattr__(self, "free", free)
         for name in ("torque", "rotation"):
             v = getattr(self, name)
             if not math.isfinite(float(v)):
-                raise InputError(f"Rigid({self.set!r}).{name}", v, "a finite number")
+                raise FEInputError(f"Rigid({self.set!r}).{name}", v, "a finite number")
             object.__setattr__(self, name, float(v))
         object.__setattr__(self, "force", _vec3(f"Rigid({self.set!r}).force", self.force))
         object.__setattr__(self, "moment", _vec3(f"Rigid({self.set!r}).moment", self.moment))
         if self.torque != 0.0 and "rz" not in free:
-            raise InputError(f"Rigid({self.set!r}).torque", self.torque, "0 unless 'rz' is in free (a torque on a held rotation does no work)")
+            raise FEInputError(f"Rigid({self.set!r}).torque", self.torque, "0 unless 'rz' is in free (a torque on a held rotation does no work)")
         if self.rotation != 0.0 and "rz" in free:
-            raise InputError(f"Rigid({self.set!r}).rotation", self.rotation, "0 when 'rz' is free (a DOF is either free or prescribed)")
+            raise FEInputError(f"Rigid({self.set!r}).rotation", self.rotation, "0 when 'rz' is free (a DOF is either free or prescribed)")
 
 
 @dataclass(frozen=True)
@@ -125,12 +125,12 @@ class Body:
         object.__setattr__(self, "loads", tuple(self.loads))
         for s in self.supports:
             if not isinstance(s, (Fixed, Rigid)):
-                raise InputError(f"bodies[{self.name!r}].supports", s, "Fixed or Rigid entries")
+                raise FEInputError(f"bodies[{self.name!r}].supports", s, "Fixed or Rigid entries")
         for s in self.loads:
             if not isinstance(s, Traction):
-                raise InputError(f"bodies[{self.name!r}].loads", s, "Traction entries")
+                raise FEInputError(f"bodies[{self.name!r}].loads", s, "Traction entries")
         if len([s for s in self.supports if isinstance(s, Rigid)]) > 1:
-            raise InputError(f"bodies[{self.name!r}].supports", self.supports, "at most one Rigid support per body")
+            raise FEInputError(f"bodies[{self.name!r}].supports", self.supports, "at most one Rigid support per body")
 
 
 @dataclass(frozen=True)
@@ -157,9 +157,9 @@ class ContactPair:
         if not self.group:
             object.__setattr__(self, "group", self.slave.split("/")[0])
         if not (self.search_gap > 0.0 and math.isfinite(self.search_gap)):
-            raise InputError(f"contacts[{self.name!r}].search_gap", self.search_gap, "a gap > 0 mm")
+            raise FEInputError(f"contacts[{self.name!r}].search_gap", self.search_gap, "a gap > 0 mm")
         if not (self.contact_radius >= 0.0):
-            raise InputError(f"contacts[{self.name!r}].contact_radius", self.contact_radius, "a radius >= 0 mm")
+            raise FEInputError(f"contacts[{self.name!r}].contact_radius", self.contact_radius, "a radius >= 0 mm")
         if self.contact_point is not None:
             object.__setattr__(self, "contact_point", _vec3(f"contacts[{self.name!r}].contact_point", self.contact_point))
 
@@ -187,18 +187,18 @@ class ContactOptions:
 
     def __post_init__(self):
         if self.points not in ("nodes", "gauss"):
-            raise InputError("contact.points", self.points, "'nodes' (averaged gap per slave node) or 'gauss' (one per Gauss point)")
+            raise FEInputError("contact.points", self.points, "'nodes' (averaged gap per slave node) or 'gauss' (one per Gauss point)")
         if self.quadrature not in (0, 2, 3, 4):
-            raise InputError("contact.quadrature", self.quadrature, "0 (slave nodes) or 2, 3, 4 (n x n Gauss points per slave face)",
+            raise FEInputError("contact.quadrature", self.quadrature, "0 (slave nodes) or 2, 3, 4 (n x n Gauss points per slave face)",
                              "one point per face leaves the averaged gaps of neighbouring nodes dependent")
         if not (self.penalty_factor > 0.0 and math.isfinite(self.penalty_factor)):
-            raise InputError("contact.penalty_factor", self.penalty_factor, "a factor > 0 (penalty = factor * E / h)")
+            raise FEInputError("contact.penalty_factor", self.penalty_factor, "a factor > 0 (penalty = factor * E / h)")
         if not (self.max_penetration > 0.0):
-            raise InputError("contact.max_penetration", self.max_penetration, "a penetration > 0 mm")
+            raise FEInputError("contact.max_penetration", self.max_penetration, "a penetration > 0 mm")
         if not (isinstance(self.max_iterations, int) and self.max_iterations >= 1):
-            raise InputError("contact.max_iterations", self.max_iterations, "an integer >= 1")
+            raise FEInputError("contact.max_iterations", self.max_iterations, "an integer >= 1")
         if not (0.0 < self.penalty_check_tol < 1.0):
-            raise InputError("contact.penalty_check_tol", self.penalty_check_tol, "a fraction in (0, 1)")
+            raise FEInputError("contact.penalty_check_tol", self.penalty_check_tol, "a fraction in (0, 1)")
 
 
 @dataclass(frozen=True)
@@ -210,9 +210,9 @@ class SolverOptions:
 
     def __post_init__(self):
         if self.solver not in SOLVERS:
-            raise InputError("solver.solver", self.solver, "one of " + ", ".join(SOLVERS))
+            raise FEInputError("solver.solver", self.solver, "one of " + ", ".join(SOLVERS))
         if self.element not in ELEMENTS:
-            raise InputError("solver.element", self.element, "one of " + ", ".join(ELEMENTS))
+            raise FEInputError("solver.element", self.element, "one of " + ", ".join(ELEMENTS))
 
 
 @dataclass(frozen=True)
@@ -231,16 +231,16 @@ class FEModel:
         object.__setattr__(self, "fillet_sets", tuple(self.fillet_sets))
         names = [b.name for b in self.bodies]
         if not names:
-            raise InputError("bodies", (), "at least one body")
+            raise FEInputError("bodies", (), "at least one body")
         if len(set(names)) != len(names):
-            raise InputError("bodies", names, "distinct body names")
+            raise FEInputError("bodies", names, "distinct body names")
         pairs = [c.name for c in self.contacts]
         if len(set(pairs)) != len(pairs):
-            raise InputError("contacts", pairs, "distinct contact pair names")
+            raise FEInputError("contacts", pairs, "distinct contact pair names")
 
     def body(self, name: str) -> Body:
         """The body called ``name``."""
         for b in self.bodies:
             if b.name == name:
                 return b
-        raise InputError("body", name, "one of " + ", ".join(b.name for b in self.bodies))
+        raise FEInputError("body", name, "one of " + ", ".join(b.name for b in self.bodies))

@@ -21,11 +21,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mesher.hexmesh import HexMesh
-from tca.errors import InputError
+from fem.mesh.hexmesh import HexMesh
+from fem.errors import FEInputError
 
-from .constraints import set_nodes
-from .model import FEModel
+from fem.constraints import set_nodes
+from fem.model import FEModel
 
 __all__ = ["PairResult", "SolveInfo", "FEResult", "torque_balance_error", "STRESS_RECOVERY"]
 
@@ -99,7 +99,7 @@ class FEResult:
         nodes = set_nodes(self.mesh, name, "set")
         v = {"von_mises": self.von_mises, "max_principal": self.principal[:, 0]}.get(values)
         if v is None:
-            raise InputError("values", values, "'von_mises' or 'max_principal'")
+            raise FEInputError("values", values, "'von_mises' or 'max_principal'")
         return float(v[nodes].max())
 
     def fillet_stress(self) -> dict:
@@ -111,7 +111,7 @@ class FEResult:
         """Moment [N mm] of the support reactions of a body about an axis (default: its reference point)."""
         if point is None:
             if body not in self.mesh.reference_points:
-                raise InputError("point", None, f"an axis point, or a reference point named {body!r} in the mesh")
+                raise FEInputError("point", None, f"an axis point, or a reference point named {body!r} in the mesh")
             rp = self.mesh.reference_points[body]
             point, axis = rp.point, rp.axis if axis is None else axis
         axis = np.asarray((0.0, 0.0, 1.0) if axis is None else axis, float)
@@ -171,5 +171,5 @@ class FEResult:
 def torque_balance_error(result: FEResult, body: str, expected_torque: float, point=None, axis=None) -> float:
     """|T_support(body) - expected| / |expected|: reaction torque vs applied torque x ratio."""
     if expected_torque == 0.0:
-        raise InputError("expected_torque", expected_torque, "a nonzero torque [N mm]")
+        raise FEInputError("expected_torque", expected_torque, "a nonzero torque [N mm]")
     return abs(result.support_torque(body, point, axis) - expected_torque) / abs(expected_torque)

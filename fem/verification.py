@@ -18,11 +18,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from mesher import primitives as prim
-from mesher.hexmesh import HexMesh
+from fem.mesh import primitives as prim
+from fem.mesh.hexmesh import HexMesh
 
-from .material import STEEL, Material
-from .model import Body, ContactOptions, ContactPair, FEModel, Fixed, Rigid, SolverOptions, Traction
+from fem.material import STEEL, Material
+from fem.model import Body, ContactOptions, ContactPair, FEModel, Fixed, Rigid, SolverOptions, Traction
 
 __all__ = ["hertz_line", "hertz_point", "cantilever", "block_chain", "gear_like"]
 

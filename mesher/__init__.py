@@ -1,7 +1,7 @@
 """Structured hexahedral tooth bodies: six subvolumes per tooth, named sets, export (report section 1.6).
 
-Data flow: :class:`tca.gear.Gear` -> :func:`mesh_gear` (teeth of one gear, gear frame) or
-:class:`tca.pair.GearPair` + TCA position -> :func:`mesh_pair` (both gears in S_f) ->
+Data flow: :class:`tca.geometry.gear.Gear` -> :func:`mesh_gear` (teeth of one gear, gear frame) or
+:class:`tca.pair.gear_pair.GearPair` + TCA position -> :func:`mesh_pair` (both gears in S_f) ->
 :class:`HexMesh` -> :func:`check_quality` / :func:`check_conformity` -> :func:`write_vtu`,
 :func:`write_inp`, :func:`write_msh`.
 
@@ -32,14 +32,14 @@ What the FE solver (``fem/``) gets in a :class:`HexMesh`
   element sizes, per-member offsets). The TCA contact point is a node of both gears.
 """
 
-from .body import Focus, MeshOptions, mesh_gear, model_teeth, plan_tooth
-from .export import abaqus_name, gmsh_quality, inp_names, to_meshio, write_inp, write_msh, write_vtu
-from .hexmesh import HEX_FACES, HexMesh, ReferencePoint, merge_meshes
-from .pair_model import PairModel, choose_position, member_pair, mesh_pair
-from .parts import join_parts
-from .quality import Quality, check_conformity, check_quality, element_volumes, face_counts, quality
-from .tooth import ToothGeometry, ToothPlan
-from .volume import section_area, tooth_region_volume
+from mesher.body import Focus, MeshOptions, mesh_gear, model_teeth, plan_tooth
+from mesher.export import abaqus_name, gmsh_quality, inp_names, to_meshio, write_inp, write_msh, write_vtu
+from fem.mesh.hexmesh import HEX_FACES, HexMesh, ReferencePoint, merge_meshes
+from mesher.pair_model import PairModel, choose_position, member_pair, mesh_pair
+from mesher.parts import join_parts
+from mesher.quality import Quality, check_conformity, check_quality, element_volumes, face_counts, quality
+from mesher.tooth import ToothGeometry, ToothPlan
+from mesher.volume import section_area, tooth_region_volume
 
 __all__ = [
     "Focus", "HEX_FACES", "HexMesh", "MeshOptions", "PairModel", "Quality", "ReferencePoint", "ToothGeometry",

@@ -2,7 +2,7 @@ r"""A gear body: several neighbouring tooth bodies on a common rim, one or two m
 
 Step 4 (Fig. 1.6(d)): the six blocks of every tooth (:mod:`mesher.tooth`) are numbered on one
 section topology (:mod:`mesher.topology`) and extruded through the axial levels into 8-node
-hexahedra. Teeth are the reference tooth turned by :meth:`tca.gear.Gear.tooth_transform`; the
+hexahedra. Teeth are the reference tooth turned by :meth:`tca.geometry.gear.Gear.tooth_transform`; the
 space-centre node rows are shared, so the hexahedra conform across subvolumes, across teeth and
 with the rim.
 
@@ -10,7 +10,7 @@ Grading ("model only what the scene needs"): a :class:`Focus` (flank side, param
 of the TCA contact point on the loaded tooth) refines the loaded flank around the contact point
 (``contact_size`` growing by ``growth`` up to ``coarse_size``), the axial levels around z, the depth
 below both flanks of the loaded tooth and its fillets (``fillet_size``); the contact point itself is
-a node. Unloaded teeth keep ``coarse_size``. On a gear with an end relief (:mod:`tca.end_relief`) the
+a node. Unloaded teeth keep ``coarse_size``. On a gear with an end relief (:mod:`tca.geometry.modifications.end_relief`) the
 axial level nearest each relief start z_s is moved onto it (unless it carries the contact point), so
 a mesh line follows the ridge of a linear relief.
 
@@ -32,13 +32,13 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from tca.errors import InputError
-from tca.gear import Gear
+from tca.geometry.gear import Gear
 
-from .grading import MinField, SizeField, count, distribute, uniform
-from .hexmesh import HEX_FACES, HexMesh, ReferencePoint
-from .quality import check_quality
-from .topology import SectionTopology
-from .tooth import BLOCKS, SIDES, ToothGeometry, ToothPlan
+from mesher.grading import MinField, SizeField, count, distribute, uniform
+from fem.mesh.hexmesh import HEX_FACES, HexMesh, ReferencePoint
+from mesher.quality import check_quality
+from mesher.topology import SectionTopology
+from mesher.tooth import BLOCKS, SIDES, ToothGeometry, ToothPlan
 
 __all__ = ["MeshOptions", "Focus", "plan_tooth", "mesh_gear", "model_teeth"]
 

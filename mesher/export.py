@@ -1,4 +1,4 @@
-"""Export of a :class:`~mesher.hexmesh.HexMesh` with meshio: VTU, ABAQUS/CalculiX ``.inp`` and gmsh ``.msh``.
+"""Export of a :class:`~fem.mesh.hexmesh.HexMesh` with meshio: VTU, ABAQUS/CalculiX ``.inp`` and gmsh ``.msh``.
 
 * **VTU** — cell data ``body`` (index into the body names) and, per face set, ``faces:<name>``: a
   bit mask of the element's local faces in the set (bit f = local face f, ABAQUS S(f+1)); point
@@ -26,7 +26,7 @@ import numpy as np
 
 from tca.errors import InputError
 
-from .hexmesh import HexMesh
+from fem.mesh.hexmesh import HexMesh
 
 __all__ = ["abaqus_name", "to_meshio", "write_vtu", "write_inp", "write_msh", "inp_names", "gmsh_quality", "gmsh_session"]
 

@@ -1,12 +1,12 @@
 r"""Finite element model of a gear pair at a position found by TCA (Steps 5–6, Figs. 1.7–1.8).
 
-The TCA (:func:`tca.pair_tca.run_pair_tca`) gives at position i the angles :math:`\phi_1, \phi_2`,
+The TCA (:func:`tca.pair.analysis.run_pair_tca`) gives at position i the angles :math:`\phi_1, \phi_2`,
 the index k of the pair in contact and the contact point on the reference teeth (parameters
 :math:`u_1, v_1, u_2, v_2`). The reference pair solved at :math:`\phi_1 - 2\pi k/N_1` is, at
 :math:`\phi_1`, tooth :math:`j_0 = -k \bmod N` of each gear (both teeth turned by −k pitches), so
 each gear is meshed with ``teeth`` teeth centred on its tooth :math:`j_0`, graded around its
 contact point (which is a node of both meshes) and placed by its mount,
-:math:`x_f = o + R_0 R_z(\phi + \phi_0)\,x` (:class:`tca.transforms.Mount`). The two loaded flanks
+:math:`x_f = o + R_0 R_z(\phi + \phi_0)\,x` (:class:`tca.numerics.transforms.Mount`). The two loaded flanks
 then touch at the TCA point: the two contact nodes coincide to the TCA residual.
 
 Double-helical members (``MeshOptions.gap`` = F): member a of both gears is centred at
@@ -18,7 +18,7 @@ Both members of a gear turn together (one shaft); member b is placed at member a
 aligned pair its contact is the mirror image; with misalignment the FE solution decides).
 
 Contact pairs: tooth j of gear 1 meets tooth j of gear 2 (same index offset from the loaded pair),
-flank ``side1`` against flank ``side2`` of the :class:`tca.pair.GearPair`.
+flank ``side1`` against flank ``side2`` of the :class:`tca.pair.gear_pair.GearPair`.
 """
 
 from __future__ import annotations
@@ -29,12 +29,12 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from tca.errors import InputError
-from tca.pair import GearPair
-from tca.pair_tca import ContactKind, PairTCAResult, TCAOptions, run_pair_tca
-from tca.pair_te import grid_index
+from tca.pair.gear_pair import GearPair
+from tca.pair.analysis import ContactKind, PairTCAResult, TCAOptions, run_pair_tca
+from tca.pair.te import grid_index
 
-from .body import Focus, MeshOptions, mesh_gear
-from .hexmesh import HexMesh, merge_meshes
+from mesher.body import Focus, MeshOptions, mesh_gear
+from fem.mesh.hexmesh import HexMesh, merge_meshes
 
 __all__ = ["PairModel", "member_pair", "choose_position", "mesh_pair"]
 
@@ -76,7 +76,7 @@ def member_pair(pair: GearPair, c: float) -> GearPair:
 
 
 def choose_position(tca: PairTCAResult, position) -> int:
-    """Index of a TCA grid position: an integer index, 'max_te' or 'min_te' (:func:`tca.pair_te.grid_index`)."""
+    """Index of a TCA grid position: an integer index, 'max_te' or 'min_te' (:func:`tca.pair.te.grid_index`)."""
     return grid_index(tca.te, position)
 
 

@@ -15,7 +15,7 @@ import numpy as np
 
 from tca.errors import InputError
 
-from .hexmesh import HexMesh, ReferencePoint
+from fem.mesh.hexmesh import HexMesh, ReferencePoint
 
 __all__ = ["join_parts", "UNION_SETS"]
 

@@ -25,7 +25,7 @@ from scipy.spatial import cKDTree
 
 from tca.errors import GeometryError
 
-from .hexmesh import HEX_FACES, HexMesh
+from fem.mesh.hexmesh import HEX_FACES, HexMesh
 
 __all__ = ["Quality", "quality", "check_quality", "element_volumes", "face_counts", "check_conformity", "HEX_EDGES"]
 

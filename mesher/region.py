@@ -25,8 +25,8 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from tca.errors import GeometryError
-from tca.gear import Gear
-from tca.surfaces import HelicoidSurface
+from tca.geometry.gear import Gear
+from tca.geometry.surfaces import HelicoidSurface
 
 __all__ = ["fillet_start"]
 

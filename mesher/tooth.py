@@ -41,10 +41,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from tca.errors import ConvergenceError, GeometryError, InputError
-from tca.gear import Gear
+from tca.geometry.gear import Gear
 
-from .region import fillet_start
-from .tfi import tfi
+from mesher.region import fillet_start
+from mesher.tfi import tfi
 
 __all__ = ["ToothGeometry", "ToothPlan", "BLOCKS"]
 
@@ -302,7 +302,7 @@ class ToothGeometry:
 
 
 def _fractions(p):
-    from .tfi import arc_fractions
+    from mesher.tfi import arc_fractions
 
     return arc_fractions(_cart(p))
 

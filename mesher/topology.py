@@ -11,7 +11,7 @@ identified here, so conformity is by construction, never by matching coordinates
 Quad ``q = (i, j)`` of a block is ``(P[i,j], P[i+1,j], P[i+1,j+1], P[i,j+1])`` with edges
 e0 (j side), e1 (i+1 side), e2 (j+1 side), e3 (i side); a block whose quads turn clockwise in
 the section is reversed, which maps edge e to 3 - e. The hexahedron's lateral face over edge e is
-local face 2 + e (VTK/C3D8 order, :data:`mesher.hexmesh.HEX_FACES`).
+local face 2 + e (VTK/C3D8 order, :data:`fem.mesh.hexmesh.HEX_FACES`).
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-from .tooth import BLOCKS, ToothPlan
+from mesher.tooth import BLOCKS, ToothPlan
 
 __all__ = ["SectionTopology"]
 

@@ -23,9 +23,9 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-from tca.gear import Gear
+from tca.geometry.gear import Gear
 
-from .region import fillet_start
+from mesher.region import fillet_start
 
 __all__ = ["section_area", "tooth_region_volume"]
 

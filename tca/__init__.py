@@ -2,25 +2,25 @@
 
 Data flow: :class:`Gear` (rack-cutter, disk) -> tooth surfaces (:meth:`Gear.surface`) ->
 :class:`GearPair` (mounts, :class:`Misalignment`) -> :func:`run_pair_tca` -> :class:`PairTCAResult`
--> :func:`mesh_contact` (the pair's TE and contact at any angle, :mod:`tca.pair_te`).
+-> :func:`mesh_contact` (the pair's TE and contact at any angle, :mod:`tca.pair.te`).
 Lower-level pieces (:class:`PlacedFlank`, :func:`tangency_system`, :func:`newton`) let planetary
 and multi-body solvers assemble their own systems of Eqs. (1.9) and (3.18).
 """
 
-from .contact import PlacedFlank, corner_system, edge_edge_system, edge_system, tangency_system
-from .crowning import DiskPlunge
-from .ellipse import contact_ellipse
-from .end_relief import EndRelief, RelievedSurface
-from .errors import ConvergenceError, GearfeError, GeometryError, InputError
-from .gear import FlankArea, Gear, TipRelief
-from .iso6336 import RootFactors, root_factors, sigma_f0
-from .newton import NewtonResult, newton
-from .pair import GearPair, Misalignment
-from .pair_tca import ARCSEC, ContactKind, PairTCAResult, TCAOptions, ellipse_outlines, run_pair_tca, solve_reference_pair
-from .pair_te import MeshContact, MeshTE, PathOfContact, mesh_contact, path_of_contact, position_angle
-from .rack import RackCutter
-from .surfaces import DeviatedSurface, HelicoidSurface, SurfacePoints, ToothSurface
-from .transforms import Mount, rot_x, rot_y, rot_z
+from tca.contact.systems import PlacedFlank, corner_system, edge_edge_system, edge_system, tangency_system
+from tca.geometry.modifications.crowning import DiskPlunge
+from tca.contact.ellipse import contact_ellipse
+from tca.geometry.modifications.end_relief import EndRelief, RelievedSurface
+from tca.errors import ConvergenceError, GearfeError, GeometryError, InputError
+from tca.geometry.gear import FlankArea, Gear, TipRelief
+from tca.rating.root_stress import RootFactors, root_factors, sigma_f0
+from tca.numerics.newton import NewtonResult, newton
+from tca.pair.gear_pair import GearPair, Misalignment
+from tca.pair.analysis import ARCSEC, ContactKind, PairTCAResult, TCAOptions, ellipse_outlines, run_pair_tca, solve_reference_pair
+from tca.pair.te import MeshContact, MeshTE, PathOfContact, mesh_contact, path_of_contact, position_angle
+from tca.geometry.rack import RackCutter
+from tca.geometry.surfaces import DeviatedSurface, HelicoidSurface, SurfacePoints, ToothSurface
+from tca.numerics.transforms import Mount, rot_x, rot_y, rot_z
 
 __all__ = [
     "ARCSEC", "ContactKind", "ConvergenceError", "DeviatedSurface", "DiskPlunge", "FlankArea", "Gear", "GearPair",

@@ -20,10 +20,10 @@ from __future__ import annotations
 
 import math
 
-from .crowning import DiskPlunge
-from .gear import Gear
-from .isostatic_train import PlanetPlacement
-from .planetary import PlanetaryTrain
+from tca.geometry.modifications.crowning import DiskPlunge
+from tca.geometry.gear import Gear
+from tca.isostatic.train import PlanetPlacement
+from tca.planetary.train import PlanetaryTrain
 
 __all__ = [
     "TABLE_1_1_MEMBER_GAP", "TABLE_1_1_PLANETS", "indexing_error_placements", "table_1_1_gears", "table_1_1_planet",

@@ -33,8 +33,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from tca.face_mesh import ARCSEC  # noqa: E402
-from tca.face_train import (FaceTrain, FaceTrainResult, basic_ratio, run_face_train, scan_delta,  # noqa: E402
+from tca.face.subgear import ARCSEC  # noqa: E402
+from tca.face.train import (FaceTrain, FaceTrainResult, basic_ratio, run_face_train, scan_delta,  # noqa: E402
                             stage_results, te_peak_to_peak, train_efficiency, train_ratio)
 
 from pipelines.cases.face import read_face_train  # noqa: E402

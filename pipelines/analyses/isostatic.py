@@ -31,7 +31,7 @@ Case keys::
 
 Writes ``tca.csv`` (one row per position), ``sun_center.png`` (Figs. 3.5(a)-3.15(a)),
 ``carrier_te.png`` (Figs. 3.5(b)-3.15(b)); the summary adds the first-order closed form of
-:mod:`tca.isostatic_linear` (exact for involute gears up to second-order terms).
+:mod:`tca.isostatic.linear` (exact for involute gears up to second-order terms).
 """
 
 from __future__ import annotations
@@ -42,8 +42,8 @@ from pathlib import Path
 
 import numpy as np
 
-from tca.isostatic import ARCSEC, IsostaticResult, fit_circle, run_isostatic_tca
-from tca.isostatic_linear import indexing_closed_form, linear_response
+from tca.isostatic.analysis import ARCSEC, IsostaticResult, fit_circle, run_isostatic_tca
+from tca.isostatic.linear import indexing_closed_form, linear_response
 
 from pipelines.cases.isostatic import read_run, read_solver, read_train
 from pipelines.render.plots import savefig
@@ -68,7 +68,7 @@ def run(case: Table, out: Path) -> dict:
     lin = linear_response(train, phi1)
     lc, lrad = fit_circle(lin.sun_center * 1e3)
     s["closed_form_first_order"] = {
-        "note": "tca.isostatic_linear: exact for involute gears up to second order in the errors",
+        "note": "tca.isostatic.linear: exact for involute gears up to second order in the errors",
         "carrier_te_mean_arcsec": float(lin.te.mean() / ARCSEC),
         "carrier_te_peak_to_peak_arcsec": float(np.ptp(lin.te) / ARCSEC),
         "sun_center_max_um": float(np.linalg.norm(lin.sun_center, axis=1).max() * 1e3),

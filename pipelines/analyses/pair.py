@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tca.pair_tca import ContactKind, run_pair_tca
+from tca.pair.analysis import ContactKind, run_pair_tca
 
 from pipelines.cases.reader import read_gears, read_pair, read_tca_options
 from pipelines.render.plots import plot_contact_paths, plot_pair_te

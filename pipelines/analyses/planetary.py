@@ -17,8 +17,8 @@ from pathlib import Path
 
 import numpy as np
 
-from tca.pair_tca import ARCSEC, ContactKind
-from tca.planetary_regulation import TrainRegulation, TrainTE, member_d_ex, periodic_peak, regulate_train
+from tca.pair.analysis import ARCSEC, ContactKind
+from tca.planetary.regulation import TrainRegulation, TrainTE, member_d_ex, periodic_peak, regulate_train
 
 from pipelines.cases.planetary import read_installment, read_train
 from pipelines.cases.reader import ARCMIN, read_tca_options

@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 
 from tca.errors import InputError
-from tca.face_gear import FaceGear
-from tca.face_train import FaceTrain
+from tca.face.face_gear import FaceGear
+from tca.face.train import FaceTrain
 
 from pipelines.cases.reader import read_gear
 from pipelines.cases.schema import Table
@@ -62,7 +62,7 @@ def read_face_train(case: Table) -> tuple[FaceTrain, dict]:
     p2 = read_gear(case.table("pinion2"), "pinion2")
     p3 = read_gear(case.table("pinion3"), "pinion3")
     for g in (shaper, p2, p3):
-        if g.end_relief is not None:  # the face-gear TCA (tca.face_gear) has no search of relieved zones
+        if g.end_relief is not None:  # the face-gear TCA (tca.face.face_gear) has no search of relieved zones
             raise InputError(f"{g.name}.end_relief", "given", "no [end_relief] in a face-gear drive (pair TCA only)")
     train = FaceTrain(g1, g4, p2, p3, delta, use)
     t = case.table("tca", required=False)

@@ -7,11 +7,11 @@ import math
 
 import numpy as np
 
-from tca.crowning import DiskPlunge
-from tca.dof import TrainConstraints
+from tca.geometry.modifications.crowning import DiskPlunge
+from tca.isostatic.dof import TrainConstraints
 from tca.errors import InputError
-from tca.isostatic import IsostaticOptions, phi1_grid
-from tca.isostatic_train import PlanetaryTrain, PlanetPlacement
+from tca.isostatic.analysis import IsostaticOptions, phi1_grid
+from tca.isostatic.train import PlanetaryTrain, PlanetPlacement
 
 from pipelines.cases.reader import read_gears
 from pipelines.cases.schema import Table

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from tca.errors import InputError
-from tca.planetary import PlanetaryTrain, ShaftErrors
+from tca.planetary.train import PlanetaryTrain, ShaftErrors
 
 from pipelines.cases.reader import ARCMIN, read_gears
 from pipelines.cases.schema import Table
@@ -20,7 +20,7 @@ def read_train(case: Table) -> PlanetaryTrain:
     if extra:
         raise InputError(f"gears.{extra[0]}", extra[0], "one of 'sun', 'planet', 'ring'")
     for name, g in gears.items():
-        if g.runout > 0:  # the Part 1 train repeats each mesh's reference pair (tca.planetary_mesh.MeshTE)
+        if g.runout > 0:  # the Part 1 train repeats each mesh's reference pair (tca.planetary.subgear.MeshTE)
             raise InputError(f"gears.{name}.runout_um", g.runout * 1e3, "0 in a Part 1 planetary case (run-out is "
                              "analysed by pair cases and by isostatic cases, kind = 'isostatic')")
     n = case.get("planets", int, lo=1, hi=20)

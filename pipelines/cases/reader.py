@@ -29,7 +29,7 @@ A gear table (``[gears.<name>]``)::
     amount_um = 20.0                 # C_a at the tip circle
     start_diameter_mm = 86.0         # d_Ca, or instead start_roll_mm: roll length from the base tangent point
     kind = "linear"                  # or "parabolic" (tangent to the involute at the start)
-    [gears.<name>.end_relief]        # lead modification at the face ends, both flanks (tca.end_relief)
+    [gears.<name>.end_relief]        # lead modification at the face ends, both flanks (tca.geometry.modifications.end_relief)
     amount_um = 15.0                 # C_I at the face end, along the line of action; <= s_n / 4
     length_mm = 4.0                  # relieved length from each relieved face end, in (0, b/2]
     shape = "linear"                 # or "parabolic": C(z) = C_I ((|z| - z_s) / L)^1 or ^2
@@ -47,12 +47,12 @@ import tomllib
 from dataclasses import replace
 from pathlib import Path
 
-from tca.crowning import DiskPlunge
+from tca.geometry.modifications.crowning import DiskPlunge
 from tca.errors import GearfeError, InputError
-from tca.end_relief import END_RELIEF_ENDS, EndRelief
-from tca.gear import Gear, TipRelief
-from tca.pair import GearPair, Misalignment
-from tca.pair_tca import TCAOptions
+from tca.geometry.modifications.end_relief import END_RELIEF_ENDS, EndRelief
+from tca.geometry.gear import Gear, TipRelief
+from tca.pair.gear_pair import GearPair, Misalignment
+from tca.pair.analysis import TCAOptions
 from tca.units import ARCMIN
 
 from pipelines.cases.schema import Table
@@ -104,7 +104,7 @@ def parse_case_text(raw: bytes, name: str = "CASE") -> dict:
 
 
 def read_gear(t: Table, name: str) -> Gear:
-    """A :class:`tca.gear.Gear` from its case table (see the module docstring for keys)."""
+    """A :class:`tca.geometry.gear.Gear` from its case table (see the module docstring for keys)."""
     hand = t.get("hand", str, "right", choices=("right", "left"))
     plunge = None
     p = t.table("plunge", required=False)
@@ -192,7 +192,7 @@ def read_gears(case: Table, key: str = "gears") -> dict[str, Gear]:
 
 
 def read_misalignment(t: Table | None) -> Misalignment:
-    """A :class:`tca.pair.Misalignment` from a ``[misalignment]`` table (or none)."""
+    """A :class:`tca.pair.gear_pair.Misalignment` from a ``[misalignment]`` table (or none)."""
     if t is None:
         return Misalignment()
     m = Misalignment(
@@ -207,7 +207,7 @@ def read_misalignment(t: Table | None) -> Misalignment:
 
 
 def read_tca_options(t: Table | None) -> TCAOptions:
-    """A :class:`tca.pair_tca.TCAOptions` from a ``[tca]`` table (or the defaults)."""
+    """A :class:`tca.pair.analysis.TCAOptions` from a ``[tca]`` table (or the defaults)."""
     if t is None:
         return TCAOptions()
     o = TCAOptions(

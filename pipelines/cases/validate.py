@@ -65,7 +65,7 @@ def _planetary(t: Table) -> None:
 
 
 def _isostatic(t: Table) -> None:
-    from tca.isostatic import _check_mobility
+    from tca.isostatic.analysis import _check_mobility
 
     from pipelines.cases.isostatic import read_run, read_solver, read_train
 

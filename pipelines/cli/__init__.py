@@ -2,7 +2,7 @@
 
 The error contract (docs/errors.md):
 
-* any :class:`tca.errors.GearfeError` (bad input, impossible geometry, a solve that does not
+* any :class:`tca.errors.GearfeError` or :class:`fem.errors.FEError` (bad input, impossible geometry, a solve that does not
   converge, a model too large for the machine) is printed as one line on stderr and gives exit
   status 2, with no result files written; ``--out`` is checked before any work
   (:func:`pipelines.cli.outdir.check_out`), ``--force`` allows a non-empty folder;
@@ -20,7 +20,7 @@ import importlib
 import os
 import sys
 
-from tca.errors import GearfeError
+from pipelines.errors import USER_ERRORS
 
 from pipelines.cli.interrupt import Terminated, check_interrupted, install, restore
 from pipelines.render import offscreen
@@ -78,7 +78,7 @@ def main(argv: list[str] | None = None) -> int:
 
             check_out(args.out, getattr(args, "force", False), RESUMABLE.get(args.command))
         return int(args._handler(args) or 0)
-    except GearfeError as exc:
+    except USER_ERRORS as exc:
         print(f"{where}: error: {_one_line(exc)}", file=sys.stderr)
         return EXIT_INPUT
     except KeyboardInterrupt:

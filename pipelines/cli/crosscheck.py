@@ -6,7 +6,7 @@
 pair, maximum von Mises per body, fillet maximum principal stress, peak contact pressure, maximum
 displacement, wall time and peak memory of both solvers, with the differences and the issue's
 targets) and ``DIR/crosscheck.json`` (the same rows and both solvers' numbers). How each number is
-computed: :mod:`pipelines.stress.crosscheck`; the job's conventions: ``docs/calculix.md``.
+computed: :mod:`pipelines.calculix.crosscheck`; the job's conventions: ``docs/calculix.md``.
 Without CalculiX: one error line naming ``apt-get install calculix-ccx``, exit status 2.
 """
 
@@ -17,8 +17,8 @@ import json
 from dataclasses import asdict
 from pathlib import Path
 
-from pipelines.stress.ccx import ccx_path
-from pipelines.stress.crosscheck import crosscheck, load_reference, table
+from pipelines.calculix.job import ccx_path
+from pipelines.calculix.crosscheck import crosscheck, load_reference, table
 
 __all__ = ["add_args", "handle"]
 

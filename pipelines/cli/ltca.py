@@ -1,7 +1,7 @@
 """Loaded TCA of a gear pair over a mesh cycle from condensed flank compliances (issue 18).
 
 ``gearfe ltca CASE.toml --out DIR`` reads a stress case (``kind = "stress"``, ``model = "pair"``) with an
-optional ``[ltca]`` table (positions, torques, flank grid; :mod:`pipelines.ltca.case`), builds each
+optional ``[ltca]`` table (positions, torques, flank grid; :mod:`pipelines.cases.ltca`), builds each
 gear's flank compliance once from its hexahedral model, then solves the contact of every pair of
 teeth within reach at every position and torque. Writes ``results.csv``, ``pressure.csv``,
 ``te_loaded.png``, ``load_share.png``, ``pressure.png``, ``mesh_stiffness.png`` and ``summary.json``
@@ -20,8 +20,8 @@ from pathlib import Path
 from pipelines.cli.interrupt import check_interrupted
 from pipelines.cases.reader import load_case
 from pipelines.cli.outdir import staged_output
-from pipelines.ltca.case import read_ltca_case
-from pipelines.ltca.run import progress_bar, run_ltca
+from pipelines.cases.ltca import read_ltca_case
+from pipelines.models.ltca.run import progress_bar, run_ltca
 
 __all__ = ["add_args", "handle"]
 

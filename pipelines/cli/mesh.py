@@ -88,8 +88,8 @@ class MeshInputs:
 
     options: object  # mesher.MeshOptions
     element_type: str
-    gear: object = None  # tca.gear.Gear when one gear is meshed
-    pair: object = None  # tca.pair.GearPair otherwise
+    gear: object = None  # tca.geometry.gear.Gear when one gear is meshed
+    pair: object = None  # tca.pair.gear_pair.GearPair otherwise
     driver: str = ""
     driven: str = ""
     position: object = "max_te"
@@ -129,9 +129,9 @@ MESH_GB_BASE, MESH_GB_PER_ELEMENT = 0.15, 4e-6
 
 
 def check_mesh_size(inp: MeshInputs) -> float:
-    """Estimated elements of the mesh (pipelines.stress.model's count); InputError naming the [mesh] key
+    """Estimated elements of the mesh (pipelines.models.stress.model's count); InputError naming the [mesh] key
     when its memory exceeds the limit (GEARFE_MAX_MEMORY_GB, default 80 % of the physical memory)."""
-    from pipelines.stress.model import memory_limit_gb, part_elements
+    from pipelines.models.stress.model import memory_limit_gb, part_elements
 
     o = inp.options
     gears = [inp.gear] if inp.gear is not None else [inp.pair.gear1, inp.pair.gear2]

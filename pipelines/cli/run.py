@@ -22,7 +22,7 @@ import time
 from pathlib import Path
 
 from tca.errors import InputError
-from tca.pair_te import POSITIONS
+from tca.pair.te import POSITIONS
 
 from pipelines.cli.interrupt import check_interrupted
 from pipelines.cases.reader import load_case
@@ -30,8 +30,8 @@ from pipelines.cli.outdir import staged_output
 from pipelines.report.html import run_html
 from pipelines.report.run import run_pipeline
 from pipelines.cases.schema import Table
-from pipelines.stress.case import StressCase, read_stress_case
-from pipelines.stress.crosscheck import write_inp_job
+from pipelines.cases.stress import StressCase, read_stress_case
+from pipelines.calculix.crosscheck import write_inp_job
 
 __all__ = ["add_args", "handle", "read_with_overrides", "SHOWN"]
 

@@ -23,9 +23,9 @@ from pathlib import Path
 from pipelines.cli.interrupt import check_interrupted
 from pipelines.cases.reader import load_case
 from pipelines.cli.outdir import staged_output
-from pipelines.stress.case import read_stress_case
-from pipelines.stress.crosscheck import write_inp_job
-from pipelines.stress.run import run_stress
+from pipelines.cases.stress import read_stress_case
+from pipelines.calculix.crosscheck import write_inp_job
+from pipelines.models.stress.run import run_stress
 
 __all__ = ["add_args", "handle", "SHOWN"]
 

@@ -16,8 +16,8 @@ Designs: an axis with ``key = "base"`` and a list of case files (relative to the
 the base case itself (then no top-level ``base``); the other axes apply to each design. A dotted
 key may create a table the base case lacks (the case reader then checks it like any other key).
 
-Stress sweeps (``task = "stress"``, :mod:`pipelines.stress.sweep`): each point runs
-:func:`pipelines.stress.run.run_stress` and writes ``result.vtu`` and ``summary.json`` in its case
+Stress sweeps (``task = "stress"``, :mod:`pipelines.sweep.points`): each point runs
+:func:`pipelines.models.stress.run.run_stress` and writes ``result.vtu`` and ``summary.json`` in its case
 folder; typical axes are ``torque_nm``, ``phi1_deg``, ``position``, ``misalignment.d_gamma_arcmin``,
 ``shaft.d_gamma_arcmin``, ``mesh.refine``. An axis over ``position`` or ``phi1_deg`` replaces the
 base case's choice of position. Positions through a mesh cycle::
@@ -65,15 +65,16 @@ import tempfile
 import time
 from pathlib import Path
 
-from tca.errors import GearfeError, InputError
+from tca.errors import InputError
+from pipelines.errors import INPUT_ERRORS, USER_ERRORS
 
 from pipelines.cli.interrupt import check_interrupted
 from pipelines.cases.reader import load_case
 from pipelines.cases.validate import validate_case
 from pipelines.cli.outdir import atomic_write_text
 from pipelines.cases.schema import Table
-from pipelines.stress.sweep import POSITION_KEYS, STEP_KEY, apply_position, expand_positions, plot_cycle, stress_scalars
-from pipelines.stress.sweep import run_point_stress, validate_stress
+from pipelines.sweep.points import POSITION_KEYS, STEP_KEY, apply_position, expand_positions, plot_cycle, stress_scalars
+from pipelines.sweep.points import run_point_stress, validate_stress
 
 __all__ = ["add_args", "handle", "build_grid", "run_point", "check_scheduler", "TASKS", "MAX_GRID_POINTS"]
 
@@ -166,10 +167,10 @@ def _validate(task: str, point: dict) -> None:
             validate_case(Table(point["case"], ""))
         elif task == "stress":
             validate_stress(point["case"])
-    except InputError as e:  # name the grid point the error belongs to
+    except INPUT_ERRORS as e:  # name the grid point the error belongs to
         where = ", ".join(f"{k} = {v!r}" for k, v in point["values"].items())
         raise InputError(e.field, e.value, e.valid, "; ".join(filter(None, (e.why, f"grid point {where}")))) from None
-    except GearfeError as e:
+    except USER_ERRORS as e:
         where = ", ".join(f"{k} = {v!r}" for k, v in point["values"].items())
         raise InputError("axes", where, "a valid case at every grid point", str(e)) from None
 
@@ -195,7 +196,7 @@ def run_point(task: str, point: dict, out_dir: str) -> dict:
         (tmp / "summary.json").write_text(json.dumps(summary, indent=2, default=to_json))
         os.replace(tmp, final)
         return {**row, **scalars(summary), "status": "ok"}
-    except GearfeError as e:
+    except USER_ERRORS as e:
         shutil.rmtree(tmp, ignore_errors=True)
         return {**row, "status": f"error: {e}"}
     except BaseException:

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pyvista as pv
 
-from mesher.hexmesh import HexMesh
+from fem.mesh.hexmesh import HexMesh
 from tca.errors import InputError
 
 from pipelines.render import offscreen

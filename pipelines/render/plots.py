@@ -11,7 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from tca.pair_tca import ARCSEC, ContactKind, PairTCAResult, ellipse_outlines  # noqa: E402
+from tca.pair.analysis import ARCSEC, ContactKind, PairTCAResult, ellipse_outlines  # noqa: E402
 
 __all__ = ["plot_pair_te", "plot_contact_paths", "savefig", "side_by_side"]
 
@@ -34,7 +34,7 @@ def plot_pair_te(r: PairTCAResult, path: Path, title: str = "") -> Path:
     te_ref = (ref.phi2 - r.pair.ratio * ref.phi1) / ARCSEC
     lo, hi = r.phi1.min(), r.phi1.max()
     # the neighbouring pairs repeat the reference pair shifted by a pitch, except with run-out
-    # (each pair then sees the eccentricity at its own angle: tca.pair_runout), where they are not drawn
+    # (each pair then sees the eccentricity at its own angle: tca.pair.runout), where they are not drawn
     shifts = range(-4, 5) if not (r.pair.gear1.runout or r.pair.gear2.runout) else ()
     for k in shifts:
         x = ref.phi1 + k * pitch

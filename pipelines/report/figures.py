@@ -1,6 +1,6 @@
-r"""Design-review pictures of a computed load case (issue 17): what is drawn where, from the run (:class:`pipelines.stress.run.StressRun`).
+r"""Design-review pictures of a computed load case (issue 17): what is drawn where, from the run (:class:`pipelines.models.stress.run.StressRun`).
 
-Inputs are the objects returned by :func:`pipelines.stress.run.run_stress` (``tca``, ``scene``, ``mesh``,
+Inputs are the objects returned by :func:`pipelines.models.stress.run.run_stress` (``tca``, ``scene``, ``mesh``,
 ``result``). Every interface member of the scene (a pair's mesh; the twin drive's sun–planet and
 planet–ring meshes of members a and b) gives:
 
@@ -15,8 +15,8 @@ planet–ring meshes of members a and b) gives:
   gear frame :math:`x_g = R^T(x_f - t)`, invariant to the tooth index), with the TCA's path of
   contact on that tooth surface (``point1``/``point2`` of the pair TCA over its grid), the TCA's
   contact ellipse at the analysed position (semi-axes :math:`\sqrt{2\delta/\lambda_i}`, δ the TCA's
-  elastic approach, :mod:`tca.ellipse`) and the Hertz ellipse under the FE force of the loaded pair
-  (:func:`pipelines.stress.sizing.hertz_contact`); FE patch against TCA prediction (no ellipse at an
+  elastic approach, :mod:`tca.contact.ellipse`) and the Hertz ellipse under the FE force of the loaded pair
+  (:func:`pipelines.models.stress.sizing.hertz_contact`); FE patch against TCA prediction (no ellipse at an
   edge or corner contact);
 * ``section_<interface>_<member>.png`` — the transverse plane through the TCA contact point
   (normal: the slave gear's axis): von Mises of both loaded teeth with their fillets, and a zoom
@@ -26,7 +26,7 @@ planet–ring meshes of members a and b) gives:
   loaded teeth (driving and coast sides) over the face width.
 
 The ellipse axes on the tangent plane: :math:`e_1` the driver's axis projected on the plane,
-:math:`e_2 = n \times e_1`, the major axis at the TCA angle from :math:`e_1` (:mod:`tca.ellipse`).
+:math:`e_2 = n \times e_1`, the major axis at the TCA angle from :math:`e_1` (:mod:`tca.contact.ellipse`).
 """
 
 from __future__ import annotations
@@ -37,9 +37,9 @@ from pathlib import Path
 
 import numpy as np
 
-from tca.pair_tca import ContactKind, PairTCAResult
-from pipelines.stress.run import StressRun
-from pipelines.stress.sizing import HertzContact
+from tca.pair.analysis import ContactKind, PairTCAResult
+from pipelines.models.stress.run import StressRun
+from pipelines.models.stress.sizing import HertzContact
 
 __all__ = ["parts_of", "elastic_displacement", "InterfaceView", "interface_views", "ellipse_outline", "ellipse_axes",
            "to_gear", "flank_zr", "surface_contact", "cut_point", "flank_set", "tca_semi_axes", "patch_extent", "flank_map",
@@ -81,7 +81,7 @@ class InterfaceView:
 
     name: str  # interface, e.g. 'sun-planet'
     member: str
-    interface: object  # pipelines.stress.scene.Interface
+    interface: object  # pipelines.models.stress.scene.Interface
     slave: object  # the slave Part (its flank carries the pressure)
     master: object  # the other Part
     which: int  # 1: the slave is the pair's gear 1 (driver), 2: gear 2
@@ -318,8 +318,8 @@ def loaded_pair_force(v: InterfaceView, summary: dict) -> float:
 
 
 def fe_hertz(v: InterfaceView, result, force: float) -> HertzContact:
-    """Hertz contact (pipelines.stress.sizing.hertz_contact) under the FE force of the loaded pair [N]."""
-    from pipelines.stress.sizing import hertz_contact
+    """Hertz contact (pipelines.models.stress.sizing.hertz_contact) under the FE force of the loaded pair [N]."""
+    from pipelines.models.stress.sizing import hertz_contact
 
     mat = result.model.bodies[0].material
     width = min(v.slave.gear.face_width, v.master.gear.face_width)

@@ -1,6 +1,6 @@
 """One load case end to end: TCA → position → mesh → contact FE → images → report (issue 7).
 
-``run_pipeline(case, out, progress)`` runs :func:`pipelines.stress.run.run_stress` (TCA, the position —
+``run_pipeline(case, out, progress)`` runs :func:`pipelines.models.stress.run.run_stress` (TCA, the position —
 by default the maximum of the transmission error, as the report does, or the case's ``phi1_deg`` —,
 the hexahedral models, the contact solve, ``result.vtu``), then writes into ``out``:
 
@@ -35,11 +35,11 @@ from pathlib import Path
 
 import numpy as np
 
-from tca.pair_tca import ARCSEC, PairTCAResult
+from tca.pair.analysis import ARCSEC, PairTCAResult
 
-from pipelines.stress.case import StressCase
+from pipelines.cases.stress import StressCase
 
-from pipelines.stress.run import StressRun, run_stress
+from pipelines.models.stress.run import StressRun, run_stress
 
 from pipelines.report.figures import design_pictures, parts_of
 

@@ -7,11 +7,11 @@ from skfem.models.elasticity import linear_elasticity
 
 from fem import STEEL, solve
 from fem.assembly import assemble_blocks
-from fem.elements import SKFEM_FROM_VTK, hex8_matrices
-from fem.stress import gauss_stress
+from fem.elements.hex8 import SKFEM_FROM_VTK, hex8_matrices
+from fem.recovery import gauss_stress
 from fem.verification import cantilever
-from mesher import primitives as prim
-from mesher.hexmesh import HEX_FACES
+from fem.mesh import primitives as prim
+from fem.mesh.hexmesh import HEX_FACES
 
 
 def _distorted_box(seed=1):

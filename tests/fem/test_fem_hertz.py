@@ -5,7 +5,7 @@ import pytest
 
 from fem import ContactOptions, solve
 from fem.verification import hertz_line, hertz_point
-from tca.errors import InputError
+from fem.errors import FEInputError
 
 
 @pytest.fixture(scope="module")
@@ -54,7 +54,7 @@ def test_hertz_line_node_to_surface_on_matching_meshes():
 def test_coarse_master_is_refused():
     """A master twice as coarse as the slave would over-constrain it (peak +29 % measured): refused."""
     mesh, model, ref = hertz_point(block_ratio=2.0)
-    with pytest.raises(InputError, match="exchange slave and master"):
+    with pytest.raises(FEInputError, match="exchange slave and master"):
         solve(mesh, model)
 
 

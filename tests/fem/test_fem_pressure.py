@@ -12,7 +12,7 @@ import scipy.sparse as sp
 from fem import ContactOptions, solve
 from fem.contact import contact_patch, surface_mass
 from fem.verification import hertz_line, hertz_point
-from tca.errors import InputError
+from fem.errors import FEInputError
 
 
 @pytest.fixture(scope="module")
@@ -99,10 +99,10 @@ def test_contact_patch_of_an_exact_hertz_distribution():
     assert patch.semi_axes == pytest.approx((a, b), rel=2e-3)
     assert abs(np.dot(patch.directions[0], R[:, 0])) == pytest.approx(1.0, abs=1e-6)
     assert patch.centre == pytest.approx((1.0, 2.0, 3.0), abs=1e-9)
-    with pytest.raises(InputError, match="kind"):
+    with pytest.raises(FEInputError, match="kind"):
         contact_patch(pts, p.ravel(), (0.0, 0.0, 1.0), kind="area")
 
 
 def test_points_option_is_validated():
-    with pytest.raises(InputError, match="contact.points"):
+    with pytest.raises(FEInputError, match="contact.points"):
         ContactOptions(points="faces")

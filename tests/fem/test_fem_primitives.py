@@ -5,9 +5,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from fem.elements import hex_geometry
-from mesher import primitives as prim
-from tca.errors import InputError
+from fem.elements.hex8 import hex_geometry
+from fem.mesh import primitives as prim
+from fem.errors import FEInputError
 
 
 def _volume(mesh):
@@ -53,7 +53,7 @@ def test_graded_spacing(length, h_frac, at_frac, growth, width_frac):
 
 def test_inverted_cell_is_rejected():
     m = prim.box("b", [0, 1], [0, 1], [0, 1])
-    with pytest.raises(InputError, match="det J"):
+    with pytest.raises(FEInputError, match="det J"):
         hex_geometry(m.points, m.cells[:, [4, 5, 6, 7, 0, 1, 2, 3]], True)
 
 

@@ -6,8 +6,8 @@ import pytest
 import scipy.sparse as sp
 
 from fem import solve
-from fem import pardiso
-from fem.linsolve import linear_solve, rigid_body_modes, schur_system
+from fem.la import pardiso
+from fem.la.linsolve import linear_solve, rigid_body_modes, schur_system
 from fem.verification import cantilever, hertz_line
 
 needs_mkl = pytest.mark.skipif(not pardiso.available(), reason="MKL PARDISO not loadable here")
@@ -50,7 +50,7 @@ def test_superlu_fallback_matches_pardiso():
 
 def test_amg_cg_linear_solve():
     from fem.assembly import assemble_blocks
-    from fem.elements import hex8_matrices
+    from fem.elements.hex8 import hex8_matrices
 
     mesh, model, _ = cantilever(n_depth=4)
     lam = np.full(mesh.n_cells, 1.2e5)

@@ -106,7 +106,7 @@ def check_refused(capsys, tmp_path, argv, expect: str, max_s: float = 3.0) -> st
 def _imported():
     """Import every subcommand (and what it imports) once, so the time limit measures the checks."""
     from pipelines.cli import build_parser
-    import pipelines.stress.run  # noqa: F401
+    import pipelines.models.stress.run  # noqa: F401
     import pipelines.report.run  # noqa: F401
 
     build_parser()

@@ -14,7 +14,7 @@ import pytest
 
 from mesher import MeshOptions, mesh_gear, quality, write_inp
 
-from .gears import gear
+from tests.mesher.gears import gear
 
 CCX = shutil.which("ccx")
 pytestmark = pytest.mark.skipif(CCX is None, reason="CalculiX (ccx) not installed: apt-get install calculix-ccx")

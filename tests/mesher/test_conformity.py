@@ -9,7 +9,7 @@ from mesher import Focus, MeshOptions, check_conformity, face_counts, mesh_gear,
 from tca import Gear
 from tca.errors import GeometryError
 
-from .gears import gear
+from tests.mesher.gears import gear
 
 BOUNDARY = ("flank_pos", "flank_neg", "fillet_pos", "fillet_neg", "root_pos", "root_neg", "top_land")
 

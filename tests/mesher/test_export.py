@@ -8,7 +8,7 @@ from mesher import Focus, MeshOptions, abaqus_name, mesh_gear, write_inp, write_
 from mesher.export import gmsh_session
 from tca.errors import InputError
 
-from .gears import gear
+from tests.mesher.gears import gear
 
 
 @pytest.fixture(scope="module")

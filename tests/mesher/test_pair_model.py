@@ -12,7 +12,7 @@ from mesher.pair_model import member_pair
 from pipelines.cases.reader import CASES_DIR, load_case, read_gears, read_misalignment
 from tca import GearPair, InputError, Misalignment, run_pair_tca
 
-from .gears import gear
+from tests.mesher.gears import gear
 
 from tca.units import ARCMIN
 

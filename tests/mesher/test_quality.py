@@ -6,7 +6,7 @@ import pytest
 from mesher import Focus, HexMesh, MeshOptions, check_quality, gmsh_quality, mesh_gear, quality
 from tca.errors import GeometryError
 
-from .gears import ALL, gear
+from tests.mesher.gears import ALL, gear
 
 # (coarse, contact) sizes in modules: coarse, default, fine
 LEVELS = {"coarse": (1.0, 0.25), "default": (0.5, 0.125), "fine": (0.25, 0.0625)}

@@ -10,7 +10,7 @@ from mesher.region import fillet_start
 from tca import Gear
 from tca.errors import GeometryError
 
-from .gears import gear
+from tests.mesher.gears import gear
 
 
 @pytest.mark.parametrize("name", ["sun", "planet", "sun3", "planet3"])

@@ -8,7 +8,7 @@ import pytest
 from mesher import MeshOptions, ToothGeometry, mesh_gear, quality, section_area, tooth_region_volume
 from mesher.volume import _tip
 
-from .gears import ALL, gear
+from tests.mesher.gears import ALL, gear
 
 
 def _polygon_area(g, rim, z, n=4000):

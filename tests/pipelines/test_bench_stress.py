@@ -6,8 +6,8 @@ import math
 
 import pytest
 
-from pipelines.bench import AREAS
-from pipelines.bench.stress import choose_refine, errors_of
+from benchmarks import AREAS
+from benchmarks.stress import choose_refine, errors_of
 
 Q = math.sqrt(2.0)
 
@@ -46,7 +46,7 @@ def test_choose_refine_takes_the_cheapest_level_within_tolerance():
 
 
 def test_stress_area_is_registered():
-    assert AREAS["stress"][0] == "pipelines.bench.stress"
+    assert AREAS["stress"][0] == "benchmarks.stress"
     for area in ("tca", "fem", "mesher", "part1", "part2", "part3"):
         assert area in AREAS
 

@@ -19,7 +19,7 @@ import pytest
 
 from pipelines.cases.reader import load_case
 from pipelines.cli import main
-from pipelines.stress.frd import read_dat_totals, read_frd
+from pipelines.calculix.frd import read_dat_totals, read_frd
 
 CCX = shutil.which("ccx")
 needs_ccx = pytest.mark.skipif(CCX is None, reason="CalculiX (ccx) not installed: apt-get install calculix-ccx")
@@ -72,7 +72,7 @@ def test_job_deck_has_every_part_of_the_scene(crowned):
     ref, rot = map(int, re.search(r"\*RIGID BODY, NSET=PLANET_RIM, REF NODE=(\d+), ROT NODE=(\d+)", deck).groups())
     # compact ids: mesh nodes 1..n, then the reference and the rotation node of the one rigid body
     node_ids = [int(x) for x in re.findall(r"^(\d+), [-0-9.e+]+, [-0-9.e+]+, [-0-9.e+]+$", deck.split("*ELEMENT")[0], re.M)]
-    node_ids += [int(x) for x in re.findall(r"^(\d+), [-0-9.e+]+, [-0-9.e+]+, [-0-9.e+]+$", deck.split("*NSET, NSET=PLANET_ROT")[0].split("gearfe (pipelines.stress.ccx)")[1], re.M)]
+    node_ids += [int(x) for x in re.findall(r"^(\d+), [-0-9.e+]+, [-0-9.e+]+, [-0-9.e+]+$", deck.split("*NSET, NSET=PLANET_ROT")[0].split("gearfe (pipelines.calculix.job)")[1], re.M)]
     assert sorted(node_ids) == list(range(1, rot + 1)) and ref < rot
     assert re.search(r"\*BOUNDARY\nSUN_RIM, 1, 1, 0\.", deck)
     # the planet axis is tilted by the 3 arcmin shaft error: its held rotations need an equation
@@ -211,7 +211,7 @@ def test_rotation_node_constraints_leave_only_the_axis_free(axis):
     # the held rotations about e1, e2 (fem.constraints.axis_frame) as *BOUNDARY/*EQUATION lines: their null
     # space must be the axis e3, and the torque on the independent DOF must do the work T phi for theta = e3 phi
     from fem.constraints import axis_frame
-    from pipelines.stress.ccx import _node_dofs
+    from pipelines.calculix.job import _node_dofs
 
     R = axis_frame(axis)
     T = 1234.5

@@ -19,9 +19,9 @@ import pytest
 
 from pipelines.cases.reader import CASES_DIR, load_case
 from pipelines.cli import main
-from pipelines.stress.case import read_stress_case
-from pipelines.stress.model import check_resources, estimate_resources, mesh_scene
-from pipelines.stress.run import build_scene, plausibility_warnings
+from pipelines.cases.stress import read_stress_case
+from pipelines.models.stress.model import check_resources, estimate_resources, mesh_scene
+from pipelines.models.stress.run import build_scene, plausibility_warnings
 from tca.errors import InputError
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -3,7 +3,7 @@
 Newton-type iterations raise :class:`tca.errors.ConvergenceError` when they do not converge
 (STYLE.md); ``gearfe`` prints it on one line and writes nothing (``pipelines/cli/outdir.py`` stages
 the output). The failing solve here is real: the axial regulation of Part 1 (a secant iteration on
-the TE maximum, ``tca.planetary_regulation``) limited to its two first-order evaluations with a
+the TE maximum, ``tca.planetary.regulation``) limited to its two first-order evaluations with a
 tolerance of 1e-6 arcsec, which it cannot meet in two evaluations.
 """
 

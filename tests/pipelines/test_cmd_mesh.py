@@ -78,7 +78,7 @@ def test_bad_case_exits_2_without_files(tmp_path, capsys, edit, fragment):
 
 
 def test_the_shipped_mesh_cases_parse():
-    # full runs of these cases are in pipelines.bench.mesher; here: they exist and are read strictly
+    # full runs of these cases are in benchmarks.mesher; here: they exist and are read strictly
     from pipelines.cases.reader import load_case
 
     for p in sorted(CASES_DIR.glob("mesh_*.toml")):

@@ -2,7 +2,7 @@
 
 import pytest
 
-from pipelines.bench.convergence import richardson
+from benchmarks.convergence import richardson
 from tca.errors import InputError
 
 

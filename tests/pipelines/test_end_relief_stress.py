@@ -14,8 +14,8 @@ import pytest
 
 from pipelines.cases.reader import CASES_DIR, load_case
 from pipelines.cli import main
-from pipelines.stress.case import read_stress_case
-from pipelines.stress.run import run_stress
+from pipelines.cases.stress import read_stress_case
+from pipelines.models.stress.run import run_stress
 
 
 def _run(name, tmp_path):

@@ -16,9 +16,10 @@ from dataclasses import replace
 
 import pytest
 
-from pipelines.bench.convergence import richardson
+from benchmarks.convergence import richardson
 from pipelines.cases import CASES_DIR, load_case
-from pipelines.stress import read_stress_case, run_stress
+from pipelines.cases.stress import read_stress_case
+from pipelines.models.stress.run import run_stress
 
 REFINE = (0.5, math.sqrt(0.5), 1.0)
 

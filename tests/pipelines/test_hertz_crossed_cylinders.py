@@ -4,7 +4,7 @@ Independent sources:
 
 * Curvatures (Johnson, Contact Mechanics, section 4.2): cylinders of radii R1, R2 whose axes cross at
   angle theta have A + B = (1/R1 + 1/R2)/2 and B - A = (1/2) sqrt(1/R1^2 + 1/R2^2 + 2 cos(2 theta)/(R1 R2)),
-  the separation being A x^2 + B y^2 in the principal axes (``tca.ellipse`` gives lambda = 2A, 2B).
+  the separation being A x^2 + B y^2 in the principal axes (``tca.contact.ellipse`` gives lambda = 2A, 2B).
 * Orientation (Mohr's circle of the relative curvature tensor K in the axes of cylinder 1):
   tan 2 psi = 2 k12 / (k11 - k22); the major axis is the direction of the smaller normal curvature.
 * Semi-axes (Hertz, in the ellipsoidal-potential form, e.g. Johnson eq. 3.60 with the load
@@ -19,9 +19,9 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from pipelines.stress.sizing import hertz_contact
-from tca.ellipse import contact_ellipse
-from tca.surfaces import SurfacePoints
+from pipelines.models.stress.sizing import hertz_contact
+from tca.contact.ellipse import contact_ellipse
+from tca.geometry.surfaces import SurfacePoints
 
 E, NU, P = 2.068e5, 0.29, 3000.0  # [MPa], [-], [N]
 

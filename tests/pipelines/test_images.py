@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from mesher.hexmesh import HexMesh
+from fem.mesh.hexmesh import HexMesh
 from pipelines.render.images import image_is_blank, render_contact_zone, render_overview, to_pyvista
 
 

@@ -5,7 +5,7 @@ b = 14 mm, T2 = 360 N m; ring x = +0.5, h_a = 0.3 m so that its tip circle stays
 and its rack-generated fillet has no neck), one tooth per gear, the pinion's LPSTC = the ring's HPSTC.
 Measured (this machine, ~6 s): ring fillet max principal 95.7 MPa against σ_F0 = 99.4 MPa (-3.8 %) at the
 default refinement; refine 0.5 / 1 / 2: 88.0 / 95.7 / 97.7 MPa, Richardson 98.4 MPa (-1.0 %)
-(pipelines/bench/standard.py section 5).
+(benchmarks/standard.py section 5).
 """
 
 from dataclasses import replace
@@ -13,10 +13,10 @@ from dataclasses import replace
 import pytest
 
 from pipelines.cases.reader import CASES_DIR, load_case
-from pipelines.stress.case import read_stress_case
-from pipelines.stress.run import run_stress
-from tca.iso6336 import root_factors
-from tca.pair_te import path_of_contact
+from pipelines.cases.stress import read_stress_case
+from pipelines.models.stress.run import run_stress
+from tca.rating.root_stress import root_factors
+from tca.pair.te import path_of_contact
 
 
 def test_ring_root_stress_at_its_hpstc_against_iso_6336_3(tmp_path):

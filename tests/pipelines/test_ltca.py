@@ -10,15 +10,15 @@ import scipy.sparse as sp
 
 from fem import solve
 from fem.assembly import assemble_blocks, surface_load
-from fem.condense import influence_matrix
-from fem.elements import hex8_matrices
+from fem.la.condense import influence_matrix
+from fem.elements.hex8 import hex8_matrices
 from fem.verification import cantilever
 from pipelines.cases.reader import load_case
 from pipelines.cases.schema import Table
 from pipelines.cli import main
-from pipelines.ltca.case import LTCAOptions, read_ltca_case
-from pipelines.ltca.contact import _active_set
-from pipelines.ltca.run import TARGETS, build_model, fe_check, positions, solve_positions
+from pipelines.cases.ltca import LTCAOptions, read_ltca_case
+from pipelines.models.ltca.contact import _active_set
+from pipelines.models.ltca.run import TARGETS, build_model, fe_check, positions, solve_positions
 from tca.errors import InputError
 
 CASE = "pipelines/cases/ltca_pair_small.toml"
@@ -245,7 +245,7 @@ def test_strip_flattening_has_the_half_plane_log_slope():
     """The strip FE's flattening follows 2 w (1 - nu^2)/(pi E) ln(2h/b) + const (the plane-strain Hertz/Weber
     slope, Johnson 1985 ch. 5): its constant c is the same at h/b = 10 and 30 (0.148 vs 0.146 measured)."""
     from fem.material import STEEL
-    from pipelines.ltca.compliance import strip_constant, weber_constant
+    from pipelines.models.ltca.compliance import strip_constant, weber_constant
 
     c10, c30 = strip_constant(STEEL, ratio=10.0), strip_constant(STEEL, ratio=30.0)
     assert c10 == pytest.approx(c30, abs=0.01)  # 1 % of the bracket ln(2h/b) + c ~ 3-4

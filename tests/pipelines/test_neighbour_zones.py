@@ -1,4 +1,4 @@
-"""Refined zones of neighbouring pairs (pipelines.stress.scene.neighbour_params): both flanks at one place.
+"""Refined zones of neighbouring pairs (pipelines.models.stress.scene.neighbour_params): both flanks at one place.
 
 Conjugate flanks (an aligned, unmodified internal pair) make every neighbouring pair "touch" in the TCA
 with gap 0 at a tangency of the extended surfaces outside the working areas. Placed independently, the
@@ -16,9 +16,9 @@ import pytest
 
 from pipelines.cases.reader import load_case
 from pipelines.cases.schema import Table
-from pipelines.stress.case import read_stress_case
-from pipelines.stress.run import build_scene, run_stress
-from tca.contact import PlacedFlank
+from pipelines.cases.stress import read_stress_case
+from pipelines.models.stress.run import build_scene, run_stress
+from tca.contact.systems import PlacedFlank
 
 CASE = "pipelines/cases/stress_internal_pair.toml"
 

@@ -1,4 +1,4 @@
-"""tca.pair_te: contact at any angle of aligned involute pairs (ties of conjugate flanks) and named positions.
+"""tca.pair.te: contact at any angle of aligned involute pairs (ties of conjugate flanks) and named positions.
 
 Independent truth: the involute's line of action. An aligned involute pair touches on the line
 through the pitch point C = (r_w1, 0, 0) tangent to both base circles, at distance
@@ -12,11 +12,11 @@ import numpy as np
 import pytest
 
 from pipelines.cases.reader import CASES_DIR, load_case
-from pipelines.stress.case import read_stress_case
-from pipelines.stress.scene import pair_scene
+from pipelines.cases.stress import read_stress_case
+from pipelines.models.stress.scene import pair_scene
 from tca.errors import InputError
-from tca.pair_tca import run_pair_tca
-from tca.pair_te import mesh_contact, path_of_contact, path_angle, position_angle
+from tca.pair.analysis import run_pair_tca
+from tca.pair.te import mesh_contact, path_of_contact, path_angle, position_angle
 
 
 @pytest.fixture(scope="module", params=["stress_spur_pair", "stress_helical_pair"])
@@ -109,7 +109,7 @@ def test_next_pair_at_the_hpstc_touches_unless_its_tip_is_relieved():
     """
     from dataclasses import replace
 
-    from pipelines.stress.run import build_scene
+    from pipelines.models.stress.run import build_scene
 
     plain = read_stress_case(load_case(CASES_DIR / "stress_spur_pair.toml"))
     relief = read_stress_case(load_case(CASES_DIR / "stress_spur_pair_relief.toml"))

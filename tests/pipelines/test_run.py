@@ -61,8 +61,8 @@ def test_run_writes_every_stage_output(pair_run, capsys):
         assert k in s, k
     # the default position is the maximum of the TE over the TCA grid (the report's choice)
     from pipelines.cases.reader import load_case
-    from pipelines.stress.case import read_stress_case
-    from tca.pair_tca import run_pair_tca
+    from pipelines.cases.stress import read_stress_case
+    from tca.pair.analysis import run_pair_tca
 
     case = read_stress_case(load_case(PAIR))
     r = run_pair_tca(case.pair, case.tca)
@@ -202,7 +202,7 @@ def test_run_report_html_renders_with_its_pictures(pair_run, tmp_path):
 def test_fe_contact_patch_against_tca_and_hertz(pair_run):
     """The FE patch on the loaded flank lies where the TCA puts the contact, oriented and as long as predicted.
 
-    Sources outside the FE: the TCA contact point and ellipse axes (tca.ellipse), Hertz's elliptical contact
+    Sources outside the FE: the TCA contact point and ellipse axes (tca.contact.ellipse), Hertz's elliptical contact
     under the FE force of the loaded pair (closed form, Johnson eqs. 4.39-4.40). Measured at this coarse mesh:
     patch length 8.13 mm vs Hertz 2a 8.30 mm, width 0.31 mm vs 2b 0.49 mm, centre 0.045 mm from the TCA point."""
     _, s = pair_run
@@ -214,7 +214,7 @@ def test_fe_contact_patch_against_tca_and_hertz(pair_run):
 
 
 def test_fe_contact_patch_width_against_hertz_at_coarse_mesh(pair_run):
-    # Hertz's 2b under the FE force of the loaded pair (elliptic integrals, pipelines.stress.sizing). With the
+    # Hertz's 2b under the FE force of the loaded pair (elliptic integrals, pipelines.models.stress.sizing). With the
     # contact constraints at the Gauss points (issue 14) the patch is resolved at refine 0.5: measured 0.499 mm
     # against 0.486 mm (+2.7 %); with nodal constraints it was 0.31 mm (two profile elements)
     _, s = pair_run

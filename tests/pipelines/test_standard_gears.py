@@ -15,10 +15,10 @@ import pytest
 
 from pipelines.cases.reader import CASES_DIR, load_case
 from pipelines.cli import main
-from pipelines.stress.case import read_stress_case
-from pipelines.stress.run import run_stress
-from tca.iso6336 import root_factors
-from tca.pair_te import path_of_contact
+from pipelines.cases.stress import read_stress_case
+from pipelines.models.stress.run import run_stress
+from tca.rating.root_stress import root_factors
+from tca.pair.te import path_of_contact
 
 E, NU = 2.068e5, 0.29
 

@@ -17,10 +17,10 @@ import pytest
 
 from pipelines.cases.reader import CASES_DIR, load_case
 from pipelines.cli import main
-from pipelines.stress.case import read_stress_case
-from pipelines.stress.run import run_stress
+from pipelines.cases.stress import read_stress_case
+from pipelines.models.stress.run import run_stress
 from tca.errors import InputError
-from tca.pair_tca import run_pair_tca
+from tca.pair.analysis import run_pair_tca
 
 ISSUE_KEYS = ("max_von_mises_mpa", "max_contact_pressure_mpa", "contact_force_n", "torque_balance_error", "dofs",
               "solve_s", "load_share")

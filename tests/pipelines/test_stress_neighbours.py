@@ -18,8 +18,8 @@ import pytest
 
 from pipelines.cases.reader import load_case
 from pipelines.cases.schema import Table
-from pipelines.stress.case import read_stress_case
-from pipelines.stress.run import run_stress
+from pipelines.cases.stress import read_stress_case
+from pipelines.models.stress.run import run_stress
 
 CASE = Path(__file__).resolve().parents[2] / "pipelines" / "cases" / "stress_pair_small.toml"
 

@@ -7,12 +7,12 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from tca.dof import TrainConstraints, count_dof
+from tca.isostatic.dof import TrainConstraints, count_dof
 from tca.errors import InputError
-from tca.gear import Gear
-from tca.isostatic import run_isostatic_tca
-from tca.isostatic_mesh import JT_CENTRES, Members, TrainFlanks, subtrain_eval
-from tca.isostatic_train import PlanetaryTrain
+from tca.geometry.gear import Gear
+from tca.isostatic.analysis import run_isostatic_tca
+from tca.isostatic.subtrain import JT_CENTRES, Members, TrainFlanks, subtrain_eval
+from tca.isostatic.train import PlanetaryTrain
 
 
 @pytest.mark.parametrize("case,kw,planets,c0", [

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from tca.errors import GeometryError, InputError
-from tca.face_gear import FaceGear
-from tca.gear import Gear
+from tca.face.face_gear import FaceGear
+from tca.geometry.gear import Gear
 
 d = math.radians
 

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from tca.errors import InputError
-from tca.face_gear import FaceGear
-from tca.face_mesh import ARCSEC, SURFACE, FaceMesh, run_face_mesh, trace_reference_pair
-from tca.gear import Gear
+from tca.face.face_gear import FaceGear
+from tca.face.subgear import ARCSEC, SURFACE, FaceMesh, run_face_mesh, trace_reference_pair
+from tca.geometry.gear import Gear
 
 d = math.radians
 

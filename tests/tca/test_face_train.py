@@ -8,11 +8,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from tca.errors import InputError
-from tca.face_gear import FaceGear
-from tca.face_mesh import ARCSEC, EDGE, _Contacts
-from tca.face_train import (FaceTrain, basic_ratio, run_face_train, scan_delta, stage_results, train_efficiency,
+from tca.face.face_gear import FaceGear
+from tca.face.subgear import ARCSEC, EDGE, _Contacts
+from tca.face.train import (FaceTrain, basic_ratio, run_face_train, scan_delta, stage_results, train_efficiency,
                             train_ratio, willis)
-from tca.gear import Gear
+from tca.geometry.gear import Gear
 
 d = math.radians
 PI17 = math.pi / 17

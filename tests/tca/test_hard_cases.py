@@ -5,9 +5,9 @@ import math
 import numpy as np
 import pytest
 
-from tca.gear import Gear
-from tca.pair import GearPair, Misalignment
-from tca.pair_tca import ContactKind, TCAOptions, run_pair_tca
+from tca.geometry.gear import Gear
+from tca.pair.gear_pair import GearPair, Misalignment
+from tca.pair.analysis import ContactKind, TCAOptions, run_pair_tca
 from tca.report_data import table_1_1_planet, table_1_1_sun
 
 d = math.radians

@@ -1,7 +1,7 @@
-"""ISO 6336-3 method B (tca.iso6336) against the generated tooth: the root chord s_Fn and fillet radius ρ_F.
+"""ISO 6336-3 method B (tca.rating.root_stress) against the generated tooth: the root chord s_Fn and fillet radius ρ_F.
 
 ISO's s_Fn and ρ_F are closed forms of the trochoid cut by the basic rack's tip rounding; the
-gear's own fillet surface (tca.profile: envelope of the rack-cutter) is an independent path to the
+gear's own fillet surface (tca.geometry.profile: envelope of the rack-cutter) is an independent path to the
 same two numbers: the fillet point whose tangent makes 30° with the tooth centre line, its chord
 2|y| and its radius of curvature. Y_F and Y_S themselves are not compared with published worked
 values: no published Y_F / Y_S for given gear data (ISO/TR 6336-30, DIN 3990 examples, textbooks) was
@@ -18,8 +18,8 @@ import numpy as np
 import pytest
 
 from tca.errors import InputError
-from tca.gear import Gear
-from tca.iso6336 import root_factors, sigma_f0
+from tca.geometry.gear import Gear
+from tca.rating.root_stress import root_factors, sigma_f0
 
 
 def _generated(g: Gear, side: int = 1) -> tuple[float, float]:

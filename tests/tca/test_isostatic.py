@@ -10,11 +10,11 @@ import time
 import numpy as np
 import pytest
 
-from tca.dof import TrainConstraints
-from tca.isostatic import ARCSEC, IsostaticOptions, phi1_grid, run_isostatic_tca
-from tca.isostatic_flank import apply, rot2
-from tca.isostatic_linear import indexing_closed_form
-from tca.isostatic_train import PlanetaryTrain
+from tca.isostatic.dof import TrainConstraints
+from tca.isostatic.analysis import ARCSEC, IsostaticOptions, phi1_grid, run_isostatic_tca
+from tca.isostatic.flanks import apply, rot2
+from tca.isostatic.linear import indexing_closed_form
+from tca.isostatic.train import PlanetaryTrain
 from tca.report_data import indexing_error_placements, table_3_1_gears, table_3_1_planet
 
 d = math.radians
@@ -121,7 +121,7 @@ def test_direct_solve_agrees_with_fictitious_unknowns():
 
 def test_carrier_centre_error_gives_no_transmission_errors():
     # issue: < 0.05 arcsec peak-to-peak. The sun settles at a fixed point 2 cos(alpha) |dE_c| from the axis
-    # (first-order closed form, tca.isostatic_linear; 0.01 um allows the second-order terms)
+    # (first-order closed form, tca.isostatic.linear; 0.01 um allows the second-order terms)
     tr = train(carrier_center=(0.020, 0.0))
     r = run_isostatic_tca(tr, rev(tr))
     assert r.carrier_te_peak_to_peak_arcsec < 0.05
@@ -197,7 +197,7 @@ def test_double_crowned_indexing_error_adds_the_same_lag(crowned, crowned_indexi
 
 def test_floating_sun_superposes_the_subtrains_to_first_order():
     # The floating sun takes the mean of the three subtrains' carrier errors and moves by
-    # e = 2/3 sum_i (s_i - mean s) nu_i (tca.isostatic_linear) where s_i = -(r_b1 / m_c1) dphi_c^(i) are the
+    # e = 2/3 sum_i (s_i - mean s) nu_i (tca.isostatic.linear) where s_i = -(r_b1 / m_c1) dphi_c^(i) are the
     # subtrains' openings computed alone (rigid train). For the double-crowned planets (openings ~10 um) the
     # prediction holds to 0.02 arcsec and 0.05 um (second order; measured 0.004 arcsec, 0.013 um).
     tr = train(CROWNED)

@@ -6,10 +6,10 @@ import math
 import numpy as np
 import pytest
 
-from tca.dof import TrainConstraints
+from tca.isostatic.dof import TrainConstraints
 from tca.errors import ConvergenceError, GeometryError, InputError
-from tca.isostatic import IsostaticOptions, phi1_grid, run_isostatic_tca
-from tca.isostatic_train import PlanetaryTrain, PlanetPlacement
+from tca.isostatic.analysis import IsostaticOptions, phi1_grid, run_isostatic_tca
+from tca.isostatic.train import PlanetaryTrain, PlanetPlacement
 from tca.report_data import indexing_error_placements, table_3_1_gears
 
 d = math.radians
@@ -85,7 +85,7 @@ def test_corner_gap_measures_penetration_of_a_point_into_the_mate():
     # sun's contact point has gap 0 to the planet flank; turning the planet by +-delta about its axis changes the
     # gap by -+ r_b2 delta along the line of action (1e-9 mm tolerance: Newton foot and round-off; the
     # linearisation error (r_b2 delta)^2 / rho ~ 1e-10 mm for delta = 1e-5 rad).
-    from tca.isostatic_mesh import Members, TrainFlanks, corner_gap, poses
+    from tca.isostatic.subtrain import Members, TrainFlanks, corner_gap, poses
 
     tr = PlanetaryTrain(SUN, (PLANET,) * 3, RING)
     r = run_isostatic_tca(tr, np.array([0.2]))

@@ -8,13 +8,13 @@ import numpy as np
 import pytest
 from scipy.interpolate import CubicSpline
 
-from tca.dof import TrainConstraints
-from tca.gear import Gear
-from tca.isostatic import ARCSEC, phi1_grid, run_isostatic_tca
-from tca.isostatic_linear import indexing_closed_form, linear_response
-from tca.isostatic_train import PlanetaryTrain, PlanetPlacement
-from tca.pair import GearPair
-from tca.pair_tca import TCAOptions, run_pair_tca
+from tca.isostatic.dof import TrainConstraints
+from tca.geometry.gear import Gear
+from tca.isostatic.analysis import ARCSEC, phi1_grid, run_isostatic_tca
+from tca.isostatic.linear import indexing_closed_form, linear_response
+from tca.isostatic.train import PlanetaryTrain, PlanetPlacement
+from tca.pair.gear_pair import GearPair
+from tca.pair.analysis import TCAOptions, run_pair_tca
 from tca.report_data import table_3_1_gears, table_3_1_planet, table_3_1_sun
 
 d = math.radians
@@ -81,7 +81,7 @@ ERRORS = {
 @pytest.mark.parametrize("design", ["table31", "30-21-72 m3 25deg"])
 @pytest.mark.parametrize("name", list(ERRORS))
 def test_simulation_matches_the_first_order_closed_form(design, name):
-    # tca.isostatic_linear (Fig. 3.9 generalised) against the simulation, errors of 10-35 um: TE within
+    # tca.isostatic.linear (Fig. 3.9 generalised) against the simulation, errors of 10-35 um: TE within
     # 0.03 arcsec and centres within 0.03 um (second-order terms; measured <= 0.012 arcsec, 0.011 um).
     e = ERRORS[name]
     tr = make(design)

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tca.isostatic import IsostaticOptions, phi1_grid, run_isostatic_tca, scaled_tolerances
+from tca.isostatic.analysis import IsostaticOptions, phi1_grid, run_isostatic_tca, scaled_tolerances
 from tca.units import ARCSEC
 
 from pipelines.cases.isostatic import read_train

@@ -14,9 +14,9 @@ import pytest
 from pipelines.cases.reader import read_gear
 from pipelines.cases.schema import Table
 from tca.errors import InputError
-from tca.gear import Gear, TipRelief
-from tca.pair import GearPair
-from tca.pair_tca import TCAOptions, run_pair_tca
+from tca.geometry.gear import Gear, TipRelief
+from tca.pair.gear_pair import GearPair
+from tca.pair.analysis import TCAOptions, run_pair_tca
 
 G = Gear("p", 19, 4.5, math.radians(20), 14.0)
 

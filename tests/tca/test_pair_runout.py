@@ -16,8 +16,8 @@ import math
 import numpy as np
 import pytest
 
-from tca.pair import GearPair
-from tca.pair_tca import TCAOptions, run_pair_tca
+from tca.pair.gear_pair import GearPair
+from tca.pair.analysis import TCAOptions, run_pair_tca
 from tca.report_data import table_1_1_planet, table_1_1_sun
 
 E_MM = 0.020  # eccentricity [mm] (20 um, the issue's case)
@@ -61,7 +61,7 @@ def test_internal_tip_clash(z2, clash):
     """Trochoid interference of a 34-tooth standard 20 deg spur pinion in a ring (SDP/SI handbook
     T-45 Eq. 5-6: a standard pair needs z2 - z1 >= 9)."""
     from tca.errors import GeometryError
-    from tca.gear import Gear
+    from tca.geometry.gear import Gear
 
     pin = Gear("planet", 34, 2.0, math.radians(20), 20.0)
     ring = Gear("ring", z2, 2.0, math.radians(20), 20.0, internal=True)

@@ -5,14 +5,14 @@ import math
 import numpy as np
 import pytest
 
-from tca.ellipse import contact_ellipse
+from tca.contact.ellipse import contact_ellipse
 from tca.errors import ConvergenceError
-from tca.gear import Gear
-from tca.newton import newton
-from tca.pair import GearPair, Misalignment
-from tca.pair_tca import ARCSEC, ContactKind, TCAOptions, run_pair_tca
+from tca.geometry.gear import Gear
+from tca.numerics.newton import newton
+from tca.pair.gear_pair import GearPair, Misalignment
+from tca.pair.analysis import ARCSEC, ContactKind, TCAOptions, run_pair_tca
 from tca.report_data import table_1_1_planet, table_1_1_sun
-from tca.surfaces import SurfacePoints
+from tca.geometry.surfaces import SurfacePoints
 
 d = math.radians
 from tca.units import ARCMIN

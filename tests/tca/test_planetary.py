@@ -6,7 +6,7 @@ import math
 import pytest
 
 from tca.errors import GeometryError, InputError
-from tca.planetary import PlanetaryTrain, ShaftErrors, dz_first_order
+from tca.planetary.train import PlanetaryTrain, ShaftErrors, dz_first_order
 from tca.report_data import TABLE_1_1_MEMBER_GAP, TABLE_1_1_PLANETS, table_1_1_gears
 
 d = math.radians

@@ -5,10 +5,10 @@ import math
 import numpy as np
 import pytest
 
-from tca.pair import GearPair, Misalignment
-from tca.pair_tca import ARCSEC, TCAOptions, run_pair_tca
-from tca.planetary import ShaftErrors
-from tca.planetary_mesh import MeshTE, member_pose, phi1_grid, run_subgear_tca, subgear_meshes, subgear_pairs
+from tca.pair.gear_pair import GearPair, Misalignment
+from tca.pair.analysis import ARCSEC, TCAOptions, run_pair_tca
+from tca.planetary.train import ShaftErrors
+from tca.planetary.subgear import MeshTE, member_pose, phi1_grid, run_subgear_tca, subgear_meshes, subgear_pairs
 from tca.report_data import table_1_1_train
 
 d = math.radians
@@ -48,7 +48,7 @@ def test_installment_error_of_an_involute_train_closed_form(involute_train, d_ex
 
 def test_explicit_mounts_equal_the_pair_misalignment(train):
     # shaft 0, member a, Delta E_x = 20 um: in both pair frames the planet is displaced by -/+ 20 um along y;
-    # the same pairs built with tca.pair's Misalignment give the same TE (to the Newton tolerance)
+    # the same pairs built with tca.pair.gear_pair's Misalignment give the same TE (to the Newton tolerance)
     e = ShaftErrors(d_ex=0.02)
     p1, p2 = subgear_pairs(train, 0, "a", e)
     sun, planet, ring = train.gears("a")
@@ -93,7 +93,7 @@ def test_member_pose_shaft_angle_about_the_shaft_centre(train):
 
 def test_members_are_mirror_images(train):
     # members a and b of a shaft with Delta E_x and a mirror-symmetric regulation have the same TE
-    # (the shortcut of tca.planetary_regulation); residual = Newton tolerance, < 1e-6 arcsec
+    # (the shortcut of tca.planetary.regulation); residual = Newton tolerance, < 1e-6 arcsec
     e = ShaftErrors(d_ex=0.02)
     a = run_subgear_tca(train, 1, "a", e, dz=-2.0, opts=FAST)
     b = run_subgear_tca(train, 1, "b", e, dz=-2.0, opts=FAST)
@@ -149,9 +149,9 @@ def test_mesh_te_from_result_keeps_the_envelope(train):
 
 
 def test_pair_explicit_mounts_are_checked(train):
-    # tca.pair accepts explicit mounts (both, and no Misalignment on top of them)
+    # tca.pair.gear_pair accepts explicit mounts (both, and no Misalignment on top of them)
     from tca.errors import InputError
-    from tca.transforms import Mount
+    from tca.numerics.transforms import Mount
 
     sun, planet, _ = train.gears("a")
     m = Mount(np.zeros(3), np.eye(3), 0.0)
@@ -160,7 +160,7 @@ def test_pair_explicit_mounts_are_checked(train):
     p1, _ = subgear_pairs(train, 0, "a")
     with pytest.raises(InputError, match="misalignment"):
         GearPair(sun, planet, Misalignment(d_ex=0.01), mount1=p1.mounts()[0], mount2=p1.mounts()[1])
-    # without errors the explicit mounts are the reference ones of tca.pair
+    # without errors the explicit mounts are the reference ones of tca.pair.gear_pair
     for ma, mb in zip(p1.mounts(), GearPair(sun, planet).mounts()):
         np.testing.assert_allclose(ma.origin, mb.origin, atol=1e-12)
         np.testing.assert_allclose(ma.R0, mb.R0, atol=1e-12)

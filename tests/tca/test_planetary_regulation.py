@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from tca.errors import ConvergenceError
-from tca.pair_tca import ARCSEC, TCAOptions
-from tca.planetary import ShaftErrors
-from tca.planetary_regulation import nominal_peak, periodic_peak, regulate_member, regulate_train, twin_te
+from tca.pair.analysis import ARCSEC, TCAOptions
+from tca.planetary.train import ShaftErrors
+from tca.planetary.regulation import nominal_peak, periodic_peak, regulate_member, regulate_train, twin_te
 from tca.report_data import table_1_1_train
 
 d = math.radians

@@ -5,9 +5,9 @@ import math
 import numpy as np
 import pytest
 
-from tca.crowning import DiskPlunge, _Disk
+from tca.geometry.modifications.crowning import DiskPlunge, _Disk
 from tca.errors import GeometryError, InputError
-from tca.gear import Gear
+from tca.geometry.gear import Gear
 from tca.report_data import table_1_1_planet
 
 d = math.radians

@@ -1,0 +1,141 @@
+"""Sparse solves: a factorization with a dense Schur complement on a small set of rows C.
+
+Contact couples the stiffness only through a few hundred gap rows and the free rigid-body DOFs
+(the set C). A symmetric matrix A (the stiffness bordered by the gap rows, ``fem.analysis``) is
+factored once with C eliminated last,
+
+    [A_RR A_RC] [x_R]   [b_R]          S = A_CC - A_CR A_RR^-1 A_RC         (dense)
+    [A_CR A_CC] [x_C] = [b_C],         b~_C = b_C - A_CR A_RR^-1 b_R,
+
+the caller chooses x_C from (S, b~_C) (the contact problem), and x_R = A_RR^-1 (b_R - A_RC x_C)
+follows by one back substitution. A_RR must be nonsingular: every body is held when its free
+rigid DOFs (in C) are clamped.
+
+Backends, chosen by measurement (MEASURED.md and ``pipelines.bench_fem``):
+- ``pardiso``: MKL PARDISO (SPD, or symmetric indefinite when C holds gap rows), Schur mode:
+  one factorization, a forward and a backward substitution.
+- ``superlu``: pure scipy fallback; factors A_RR with SuperLU and forms S with |C| solves.
+``linear_solve`` also offers ``amg`` (pyamg smoothed aggregation + rigid-body modes, CG) for
+solves without contact.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from fem.errors import FEConvergenceError, FEError, FEInputError
+
+from fem.la import pardiso
+
+__all__ = ["choose_solver", "SchurSystem", "schur_system", "linear_solve", "rigid_body_modes"]
+
+
+def choose_solver(name: str) -> str:
+    """Resolve 'auto' to 'pardiso' when MKL loads, else 'superlu'."""
+    if name == "auto":
+        return "pardiso" if pardiso.available() else "superlu"
+    if name == "pardiso" and not pardiso.available():
+        raise FEInputError("solver.solver", name, "'superlu' or 'auto' (MKL PARDISO could not be loaded)")
+    return name
+
+
+@dataclass(eq=False)
+class SchurSystem:
+    """A factored SPD matrix with its dense Schur complement on rows ``C``."""
+
+    method: str
+    C: np.ndarray
+    schur: np.ndarray
+    factor_s: float
+    _solve: Callable = field(repr=False)
+
+    def solve(self, f: np.ndarray, solve_c: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
+        """Full solution for load f, with u_C = solve_c(condensed load f~_C) chosen by the caller."""
+        return self._solve(f, solve_c)
+
+
+def schur_system(K: sp.spmatrix, C: np.ndarray, method: str = "auto", definite: bool = True) -> SchurSystem:
+    """Factor symmetric K once, with the dense Schur complement on sorted rows C (may be empty)."""
+    method = choose_solver(method)
+    C = np.asarray(C, np.int64)
+    t0 = time.perf_counter()
+    if method == "pardiso":
+        fac = pardiso.Pardiso(K, C if len(C) else None, mtype=2 if definite else -2)
+        if len(C):
+            def solve(f, solve_c):
+                y = fac.forward(f)
+                y[C] = solve_c(y[C].copy())
+                return fac.backward(y)
+        else:
+            def solve(f, solve_c):
+                return fac.solve(f)
+        S = fac.schur if len(C) else np.zeros((0, 0))
+        return SchurSystem("pardiso", C, S, time.perf_counter() - t0, solve)
+    if method != "superlu":
+        raise FEInputError("solver.solver", method, "'pardiso', 'superlu' or 'auto'")
+    K = sp.csr_matrix(K)
+    R = np.setdiff1d(np.arange(K.shape[0]), C)
+    KRR = K[R][:, R].tocsc()
+    try:
+        lu = spla.splu(KRR, permc_spec="MMD_AT_PLUS_A")
+    except RuntimeError as exc:  # singular
+        raise FEError(f"stiffness matrix is singular ({exc}): a body is not supported") from None
+    KRC = K[R][:, C].tocsc()
+    KCR = K[C][:, R].tocsr()
+    S = K[C][:, C].toarray()
+    for s in range(0, len(C), 256):
+        S[:, s:s + 256] -= KCR @ lu.solve(KRC[:, s:s + 256].toarray())
+
+    def solve(f, solve_c):
+        u = np.empty_like(f)
+        fC = f[C] - KCR @ lu.solve(f[R]) if len(C) else f[C]
+        u[C] = solve_c(fC)
+        u[R] = lu.solve(f[R] - KRC @ u[C])
+        return u
+
+    return SchurSystem("superlu", C, S, time.perf_counter() - t0, solve)
+
+
+def rigid_body_modes(points: np.ndarray) -> np.ndarray:
+    """The six rigid-body modes (3n, 6) of interleaved nodal DOFs (near null space for AMG)."""
+    n = len(points)
+    B = np.zeros((n, 3, 6))
+    c = points - points.mean(axis=0)
+    for i in range(3):
+        B[:, i, i] = 1.0
+    B[:, 1, 3], B[:, 2, 3] = -c[:, 2], c[:, 1]
+    B[:, 0, 4], B[:, 2, 4] = c[:, 2], -c[:, 0]
+    B[:, 0, 5], B[:, 1, 5] = -c[:, 1], c[:, 0]
+    return B.reshape(3 * n, 6)
+
+
+def linear_solve(K: sp.spmatrix, f: np.ndarray, method: str = "auto", *, modes: np.ndarray | None = None,
+                 tol: float = 1e-8) -> tuple[np.ndarray, dict]:
+    """Solve K u = f by 'pardiso', 'superlu' or 'amg' (CG); returns u and timing/iteration info."""
+    t0 = time.perf_counter()
+    info: dict = {"method": method}
+    if method in ("auto", "pardiso", "superlu"):
+        sys_ = schur_system(K, np.zeros(0, np.int64), method)
+        u = sys_.solve(f, lambda fc: fc)
+        info["method"] = sys_.method
+    elif method == "amg":
+        import pyamg
+
+        A = sp.csr_matrix(K)
+        ml = pyamg.smoothed_aggregation_solver(A.tobsr(blocksize=(3, 3)), B=modes, symmetry="symmetric", strength="symmetric")
+        res: list[float] = []
+        u = ml.solve(f, tol=tol, accel="cg", maxiter=2000, residuals=res)
+        info["iterations"] = len(res) - 1
+        rel = np.linalg.norm(f - A @ u) / max(np.linalg.norm(f), 1e-300)
+        if rel > 10 * tol:
+            raise FEConvergenceError("AMG-preconditioned CG", "linear solve", rel, len(res) - 1)
+    else:
+        raise FEInputError("method", method, "'auto', 'pardiso', 'superlu' or 'amg'")
+    info["seconds"] = time.perf_counter() - t0
+    return u, info

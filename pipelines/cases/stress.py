@@ -1,0 +1,214 @@
+"""A stress load case (``kind = "stress"``): the record and its reader (case-file keys in :mod:`pipelines.models.stress.run`)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from tca.errors import InputError
+from tca.pair.gear_pair import GearPair
+from tca.pair.analysis import ARCSEC, TCAOptions
+from tca.pair.te import GRID, NAMED, POSITIONS, path_angle
+from tca.planetary.train import PlanetaryTrain, ShaftErrors
+
+from pipelines.cases.reader import ARCMIN, read_gears, read_pair, read_tca_options
+from pipelines.cases.schema import Table
+from pipelines.cases.planetary import read_train
+from pipelines.models.stress.model import FESettings
+from pipelines.models.stress.scene import PHASES
+from pipelines.models.stress.sizing import SizeRules
+
+__all__ = ["StressCase", "read_stress_case", "MODELS", "REGULATION"]
+
+MODELS = ("pair", "twin")
+
+
+REGULATION = ("tca", "none", "given")
+
+
+@dataclass(frozen=True)
+class StressCase:
+    """A stress load case: model, gears, position, torque [N mm], mesh rules and FE settings."""
+
+    model: str
+    torque: float  # [N mm] magnitude, on the driven gear (pair) or the ring (twin)
+    title: str = ""
+    pair: GearPair | None = None
+    train: PlanetaryTrain | None = None
+    errors: ShaftErrors = field(default_factory=ShaftErrors)
+    regulation: str = "tca"
+    dz: tuple = (0.0, 0.0)  # [mm] given axial regulation of members a, b
+    regulation_tol: float = 1e-3 * ARCSEC  # [rad]
+    regulation_maxiter: int = 12
+    member_phase: str = ""  # 'assembled' or 'nominal'; '' -> 'nominal' without regulation, else 'assembled'
+    position: object = "max_te"  # 'max_te', 'min_te', a grid index; pair model also 'pitch', 'hpstc', 'lpstc'
+    phi1: float | None = None  # [rad] instead of position
+    roll: float | None = None  # [rad] driver's roll angle at mid-face, instead of position (pair model)
+    tca: TCAOptions = field(default_factory=TCAOptions)
+    mesh: SizeRules = field(default_factory=SizeRules)
+    fe: FESettings = field(default_factory=FESettings)
+
+    def __post_init__(self):
+        if self.model not in MODELS:
+            raise InputError("model", self.model, "one of " + ", ".join(repr(m) for m in MODELS))
+        if not (self.torque > 0 and math.isfinite(self.torque)):
+            raise InputError("torque_nm", self.torque * 1e-3, "a torque > 0 N m")
+        if self.model == "pair" and (self.pair is None or self.train is not None):
+            raise InputError("model", self.model, "a gear pair (driver, driven) for model 'pair'")
+        if self.model == "twin" and (self.train is None or self.pair is not None):
+            raise InputError("model", self.model, "a planetary train (sun, planet, ring) for model 'twin'")
+        if self.regulation not in REGULATION:
+            raise InputError("regulation.mode", self.regulation, "one of " + ", ".join(repr(m) for m in REGULATION))
+        if not self.member_phase:
+            object.__setattr__(self, "member_phase", "nominal" if self.regulation == "none" else "assembled")
+        if self.member_phase not in PHASES:
+            raise InputError("regulation.member_phase", self.member_phase, "one of " + ", ".join(repr(p) for p in PHASES))
+        dz = tuple(float(x) for x in self.dz)
+        if len(dz) != 2 or any(not math.isfinite(x) for x in dz):
+            raise InputError("regulation.dz_mm", self.dz, "two finite numbers (members a and b)")
+        object.__setattr__(self, "dz", dz)
+        if self.train is not None:
+            lim = 0.5 * self.train.planet.face_width
+            if any(abs(x) > lim for x in dz):
+                raise InputError("regulation.dz_a_mm", dz, f"|value| <= half the face width, {lim:g} mm")
+        pos = self.position
+        allowed = POSITIONS if self.model == "pair" else GRID
+        if not (pos in allowed or (isinstance(pos, int) and not isinstance(pos, bool))):
+            raise InputError("position", pos, ", ".join(repr(p) for p in allowed) + " or an integer index of the TCA positions"
+                             + ("" if self.model == "pair" else " (named positions on the path of contact: pair model)"))
+        if self.phi1 is not None and not math.isfinite(self.phi1):
+            raise InputError("phi1_deg", self.phi1, "a finite angle")
+        if self.roll is not None and (self.model != "pair" or self.phi1 is not None or not math.isfinite(self.roll)):
+            raise InputError("roll_deg", math.degrees(self.roll), "a finite angle, pair model, without phi1_deg")
+        if self.model == "pair" and self.phi1 is None and (self.roll is not None or pos in NAMED):
+            path_angle(self.pair, pos, self.roll)  # a position off the path of contact fails here, before any work
+
+
+def _um(v: float | None) -> float | None:
+    return None if v is None else v * 1e-3
+
+
+def _read_mesh(t: Table | None) -> SizeRules:
+    if t is None:
+        return SizeRules()
+    pos = dict(lo=0.0, lo_open=True)
+    r = SizeRules(
+        refine=t.get("refine", float, 1.0, lo=0.1, hi=10.0),  # default chosen by benchmarks.stress
+        teeth=t.get("teeth", int, 3, lo=1, hi=9),
+        rim_depth=t.get("rim_depth_mm", float, None, **pos),
+        coarse=t.get("coarse_size_mm", float, None, **pos),
+        contact=t.get("contact_size_mm", float, None, **pos),
+        axial=t.get("axial_contact_size_mm", float, None, **pos),
+        fillet=t.get("fillet_size_mm", float, None, **pos),
+        neighbour=t.get("neighbour_size_mm", float, None, **pos),
+        growth=t.get("growth", float, 1.3, lo=1.05, hi=3.0),
+        zone=t.get("zone", float, 1.2, lo=0.0, hi=5.0),
+        neighbour_reach=_um(t.get("neighbour_reach_um", float, None, lo=0.0, hi=1000.0)),
+    )
+    t.done()
+    return r
+
+
+E_RANGE_MPA = (1e3, 1e6)  # engineering gear materials: polymers (~2e3 MPa) to carbides (~6e5 MPa)
+
+
+def _youngs(t: Table) -> float:
+    """Young's modulus [MPa], refused outside E_RANGE_MPA with a hint at the unit (GPa, Pa)."""
+    e = t.get("youngs_modulus_mpa", float, 2.068e5, lo=0.0, lo_open=True)
+    lo, hi = E_RANGE_MPA
+    if not lo <= e <= hi:
+        hint = (f"{e:g} looks like GPa: {e * 1e3:g} MPa?" if 0.1 <= e < lo else
+                f"{e:g} looks like Pa: {e * 1e-6:g} MPa?" if 1e8 <= e <= 1e13 else "not a plausible stiffness")
+        raise InputError(t._key("youngs_modulus_mpa"), e, f"a Young's modulus in MPa in [{lo:g}, {hi:g}] (steel 2.068e5)",
+                         hint)
+    return e
+
+
+def _read_fe(t: Table | None) -> FESettings:
+    if t is None:
+        return FESettings()
+    f = FESettings(
+        E=_youngs(t),
+        nu=t.get("poisson_ratio", float, 0.29, lo=-1.0, hi=0.5, lo_open=True, hi_open=True),
+        element=t.get("element", str, "C3D8I", choices=("C3D8I", "C3D8")),
+        solver=t.get("solver", str, "auto", choices=("auto", "pardiso", "superlu")),
+        penalty_factor=t.get("penalty_factor", float, 100.0, lo=0.0, lo_open=True, hi=1e6),
+        max_penetration=t.get("max_penetration_mm", float, 1e-4, lo=0.0, lo_open=True, hi=0.1),
+        quadrature=t.get("quadrature", int, 2, choices=(0, 2, 3, 4)),
+        penalty_check_tol=t.get("penalty_check_tol", float, 0.01, lo=0.0, hi=1.0, lo_open=True, hi_open=True),
+        search_gap=t.get("search_gap_mm", float, 0.03, lo=0.0, lo_open=True, hi=5.0),
+        max_search_gap=t.get("max_search_gap_mm", float, 0.5, lo=0.0, lo_open=True, hi=5.0),
+    )
+    t.done()
+    return f
+
+
+def _read_position(case: Table):
+    given = [k for k in ("position", "phi1_deg", "roll_deg") if case.has(k)]
+    if len(given) > 1:
+        raise InputError(given[1], case.data[given[1]], f"one of position, phi1_deg, roll_deg, not both {given[0]} and {given[1]}")
+    phi1 = math.radians(case.get("phi1_deg", float, lo=-3600.0, hi=3600.0)) if case.has("phi1_deg") else None
+    roll = math.radians(case.get("roll_deg", float, lo=0.0, hi=180.0)) if case.has("roll_deg") else None
+    v = case.data.get("position", "max_te")
+    if isinstance(v, int) and not isinstance(v, bool):
+        pos = case.get("position", int)
+    elif isinstance(v, str):
+        pos = case.get("position", str, "max_te", choices=POSITIONS)
+    else:
+        raise InputError("position", v, ", ".join(repr(p) for p in POSITIONS) + " or an integer index of the TCA positions")
+    return pos, phi1, roll
+
+
+def read_stress_case(case: Table) -> StressCase:
+    """A :class:`StressCase` from a case table (module docstring); every key is checked, unknown keys rejected."""
+    kind = case.get("kind", str, "stress", choices=("stress",))
+    del kind
+    model = case.get("model", str, choices=MODELS)
+    title = case.get("title", str, "")
+    torque = case.get("torque_nm", float, lo=0.0, lo_open=True, hi=1e7) * 1e3
+    pos, phi1, roll = _read_position(case)
+    tca = read_tca_options(case.table("tca", required=False))
+    mesh = _read_mesh(case.table("mesh", required=False))
+    fe = _read_fe(case.table("fe", required=False))
+    if model == "pair":
+        for k in ("planets", "member_gap_mm", "shaft", "regulation"):
+            if case.has(k):
+                raise InputError(k, case.data[k], "no planetary-train keys in a 'pair' case")
+        pair, _, _ = read_pair(case, read_gears(case))
+        for g in (pair.gear1, pair.gear2):
+            if g.runout > 0:  # the FE scene places a periodic pair (tca.planetary.subgear.MeshTE): refuse, not ignore
+                raise InputError(f"gears.{g.name}.runout_um", g.runout * 1e3, "0 in a stress case (run-out is analysed "
+                                 "by gearfe tca; the FE model places the teeth of a pair without it)")
+        out = StressCase("pair", torque, title, pair=pair, position=pos, phi1=phi1, roll=roll, tca=tca, mesh=mesh, fe=fe)
+    else:
+        for k in ("driver", "driven", "center_distance_mm", "misalignment"):
+            if case.has(k):
+                raise InputError(k, case.data[k], "no pair keys in a 'twin' case (the train fixes the meshes)")
+        train = read_train(case)
+        st = case.table("shaft", required=False)
+        errors = ShaftErrors()
+        if st is not None:
+            errors = ShaftErrors(d_ex=st.get("d_ex_um", float, 0.0, lo=-1000.0, hi=1000.0) * 1e-3,
+                                 d_gamma=st.get("d_gamma_arcmin", float, 0.0, lo=-60.0, hi=60.0) * ARCMIN)
+            st.done()
+        rt = case.table("regulation", required=False)
+        mode, dz, tol, maxit, phase = "tca", (0.0, 0.0), 1e-3, 12, ""
+        if rt is not None:
+            mode = rt.get("mode", str, "tca", choices=REGULATION)
+            phase = rt.get("member_phase", str, "", choices=("",) + PHASES)
+            if mode == "given":
+                dz = (rt.get("dz_a_mm", float, lo=-1000.0, hi=1000.0), rt.get("dz_b_mm", float, lo=-1000.0, hi=1000.0))
+            else:
+                for k in ("dz_a_mm", "dz_b_mm"):
+                    if rt.has(k):
+                        raise InputError(f"regulation.{k}", rt.data[k], "set only with mode = 'given'")
+            tol = rt.get("tol_arcsec", float, tol, lo=1e-6, hi=10.0)
+            maxit = rt.get("max_iterations", int, maxit, lo=2, hi=50)
+            rt.done()
+        if tca.steps_per_cycle % train.planets:
+            raise InputError("tca.steps_per_cycle", tca.steps_per_cycle, f"a multiple of the number of planets n = {train.planets}")
+        out = StressCase("twin", torque, title, train=train, errors=errors, regulation=mode, dz=dz,
+                         regulation_tol=tol * ARCSEC, regulation_maxiter=maxit, member_phase=phase, position=pos, phi1=phi1, roll=roll, tca=tca,
+                         mesh=mesh, fe=fe)
+    case.done()
+    return out

@@ -1,0 +1,190 @@
+r"""Element sizes of the loaded flanks from Hertz's contact (the formulas are in :mod:`pipelines.models.stress.scene`)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from scipy.optimize import brentq
+from scipy.special import ellipe, ellipk
+
+from tca.errors import GeometryError, InputError
+from tca.geometry.gear import Gear
+from tca.pair.analysis import ContactKind
+
+__all__ = ["HertzContact", "hertz_contact", "SizeRules", "ContactSizes", "contact_sizes", "NEIGHBOUR"]
+
+# ---------------------------------------------------------------------------------------------- Hertz and sizes
+@dataclass(frozen=True)
+class HertzContact:
+    """Hertz estimate of one contact: semi-axes a >= b [mm], peak pressure p0 [MPa], normal load [N].
+
+    ``line``: a line contact (the ellipse would be longer than the contact line): ``a`` is half the
+    contact line's length and ``b`` the half-width of the band, ``w`` = load / (2 a) [N/mm].
+    """
+
+    a: float  # [mm]
+    b: float  # [mm]
+    p0: float  # [MPa]
+    line: bool
+    load: float  # [N]
+
+    @property
+    def w(self) -> float:
+        """Load per unit length of the contact line [N/mm] (line contact; for an ellipse P / (2a))."""
+        return self.load / (2.0 * self.a)
+
+    def as_json(self) -> dict:
+        """The summary's record (keys with units)."""
+        return {"a_mm": self.a, "b_mm": self.b, "p0_mpa": self.p0, "line": self.line, "load_n": self.load}
+
+
+def _ratio(e: float) -> float:
+    """B/A of an ellipse of eccentricity e (Johnson eq. 4.39)."""
+    m = e * e
+    K, Ee = ellipk(m), ellipe(m)
+    return ((Ee / (1 - m)) - K) / (K - Ee)
+
+
+_E_MAX = 1 - 1e-12  # largest eccentricity solved for; B/A beyond _ratio(_E_MAX) (~1e11) is a line contact
+
+
+def hertz_contact(lam: tuple, load: float, E: float, nu: float, length: float) -> HertzContact:
+    """Hertz contact of two bodies of one material (module docstring of :mod:`pipelines.models.stress.scene`).
+
+    lam: eigenvalues (λ1, λ2) of the relative curvature [1/mm]; load [N]; ``length`` [mm]: the
+    length of the contact line inside both flanks (the face width over cos β_b for a helical pair);
+    an ellipse longer than it is a line contact, b = sqrt(4 w R / (π E*)) = sqrt(8 w R / (π E')),
+    w = load / length, R = 1 / λ2, E* = E / (2 (1 - ν²)) = E' / 2, p0 = 2 w / (π b).
+    """
+    Es = E / (2.0 * (1.0 - nu**2))
+    l1, l2 = sorted(float(x) for x in lam)
+    if not (l2 > 0 and load > 0 and length > 0):
+        raise GeometryError("contact", "not convex", f"relative curvatures {l1:.3g}, {l2:.3g} 1/mm and load {load:.3g} N: "
+                            "the surfaces do not touch at a point or line (no Hertz estimate)")
+    A, B = 0.5 * l1, 0.5 * l2
+    if A > 0 and B / A < _ratio(_E_MAX):
+        if B / A < 1 + 1e-9:
+            a = b = (3 * load / (8 * A * Es)) ** (1 / 3)
+        else:
+            e = brentq(lambda e: _ratio(e) - B / A, 1e-6, _E_MAX, xtol=1e-14)
+            m = e * e
+            K, Ee = ellipk(m), ellipe(m)
+            a = (3 * load * (K - Ee) / (2 * math.pi * A * Es * m)) ** (1 / 3)
+            b = a * math.sqrt(1 - m)
+        if a <= 0.5 * length:
+            return HertzContact(a, b, 3 * load / (2 * math.pi * a * b), False, load)
+    w = load / length
+    b = math.sqrt(4 * w / (l2 * math.pi * Es))
+    return HertzContact(0.5 * length, b, 2 * w / (math.pi * b), True, load)
+
+
+NEIGHBOUR = 0.1  # default profile size on the other teeth's loaded flanks [module] (converged load share, see README)
+
+
+C_PRIME = 14.0  # [N/(mm um)] single stiffness of a solid spur pair, ISO 6336-1 (order of magnitude of c')
+
+
+@dataclass(frozen=True)
+class SizeRules:
+    """Element sizes of the models [mm, or multiples of the module m]; every size is divided by ``refine``.
+
+    None: the Hertz-based contact sizes of the module docstring, ``coarse`` = 0.75 m,
+    ``fillet`` = 0.1 m, ``neighbour`` = NEIGHBOUR m (profile size on the loaded side of the
+    other teeth, :func:`mesher.body.plan_tooth`; divided by ``refine`` only when ``refine`` > 1),
+    rim depth 3 m. Default ``refine`` = 1: the cheapest
+    level of ``benchmarks.stress`` with the maximum von Mises stress within 5 % (README,
+    "Stress speed vs error").
+    """
+
+    refine: float = 1.0
+    teeth: int = 3
+    rim_depth: float | None = None
+    coarse: float | None = None
+    contact: float | None = None
+    axial: float | None = None
+    fillet: float | None = None
+    neighbour: float | None = None
+    growth: float = 1.3
+    zone: float = 1.2
+    neighbour_reach: float | None = None  # [mm] neighbouring pairs closer than this (TCA) get a focus; None: reach()
+
+    def __post_init__(self):
+        if not (0.1 <= self.refine <= 10.0):
+            raise InputError("mesh.refine", self.refine, "in [0.1, 10] (element sizes are divided by it)")
+        if not (isinstance(self.teeth, int) and not isinstance(self.teeth, bool) and 1 <= self.teeth <= 9):
+            raise InputError("mesh.teeth", self.teeth, "an integer in [1, 9] (teeth per gear part)")
+        for k in ("rim_depth", "coarse", "contact", "axial", "fillet", "neighbour"):
+            v = getattr(self, k)
+            if v is not None and not (v > 0 and math.isfinite(v)):
+                raise InputError(f"mesh.{'rim_depth' if k == 'rim_depth' else k + '_size'}_mm", v, "> 0 mm")
+        if not (1.05 <= self.growth <= 3.0):
+            raise InputError("mesh.growth", self.growth, "in [1.05, 3]")
+        if not (0.0 <= self.zone <= 5.0):
+            raise InputError("mesh.zone", self.zone, "in [0, 5] (zone half-lengths over the Hertz ellipse's)")
+        if self.neighbour_reach is not None and not (0.0 <= self.neighbour_reach <= 1.0):
+            raise InputError("mesh.neighbour_reach_um", self.neighbour_reach * 1e3, "in [0, 1000] um")
+
+    def reach(self, load: float, face_width: float) -> float:
+        r"""Separation [mm] below which a neighbouring pair of teeth is meshed like the loaded one.
+
+        ``neighbour_reach`` if set, else three times the approach of a pair under the whole normal load
+        P [N] estimated with ISO 6336-1's single stiffness :math:`c' = 14` N/(mm µm) over the face width
+        b [mm]: :math:`3P/(c' b)`. A pair within it may close under load and carry part of it; a
+        localized (crowned) contact is more compliant than the full-face line contact c′ describes,
+        hence the factor (the crowned pair of docs/ltca.md approaches by about twice P/(c′b)).
+        """
+        if self.neighbour_reach is not None:
+            return self.neighbour_reach
+        return 3.0 * load / (C_PRIME * 1e3 * face_width)
+
+
+@dataclass(frozen=True)
+class ContactSizes:
+    """Element sizes and refined zone of one loaded flank [mm] (:class:`mesher.MeshOptions` fields)."""
+
+    coarse: float
+    contact: float  # profile size at the contact
+    axial: float  # axial size at the contact
+    fillet: float
+    neighbour: float  # profile size on the other teeth's loaded flanks
+    rim: float  # rim depth
+    growth: float
+    extent_u: float  # zone half-length along the profile
+    extent_z: float  # zone half-length along the axis
+    teeth: int = 3
+
+
+def contact_sizes(rules: SizeRules, gear: Gear, hz: HertzContact, angle: float, kind: int) -> ContactSizes:
+    """Sizes and zone of one loaded flank (module docstring of :mod:`pipelines.models.stress.scene`).
+
+    A line contact is sized as an ellipse with ``a`` half the contact line, its major axis at the base
+    helix angle β_b from the axis: on a spur gear the zone spans the face at one profile position; on a
+    helical gear it covers the inclined line, (B/2) tan β_b + b either side of the point along the profile.
+    """
+    m, r = gear.module, rules.refine
+    coarse = (rules.coarse if rules.coarse is not None else 0.75 * m) / r
+    a, b = hz.a, hz.b
+    s, c = abs(math.sin(angle)), abs(math.cos(angle))
+    if hz.line:  # the contact line of an involute helicoid: inclined by the base helix angle across the flank
+        beta_b = math.atan(math.tan(gear.helix) * gear.r_b / gear.r_p)
+        s, c = math.sin(beta_b), math.cos(beta_b)
+    surface = kind == ContactKind.SURFACE
+    # a line contact's band is resolved one step finer (b/4: nodal peak within 5 % of Hertz at refine 1, docs)
+    contact = rules.contact if rules.contact is not None else b / (4.0 if hz.line else 3.0)
+    if rules.axial is not None:
+        axial = rules.axial
+    elif surface:
+        axial = min(a / 6.0, b / (3.0 * s) if s > 1e-12 else math.inf)
+    else:
+        axial = 2.0 * contact
+    contact = min(max(contact, 0.005 * m), coarse * r) / r
+    axial = min(max(axial, contact * r), coarse * r) / r
+    fillet = min((rules.fillet if rules.fillet is not None else 0.1 * m) / r, coarse)
+    # a resolution of the flank geometry (facet sag against the elastic approach), not of a stress gradient:
+    # coarser models (refine < 1) keep it, finer ones refine it too
+    neighbour = min((rules.neighbour if rules.neighbour is not None else NEIGHBOUR * m) / max(r, 1.0), coarse)
+    ext_u = rules.zone * (a * s + b * c) if surface else rules.zone * b
+    ext_z = rules.zone * (a * c + b * s) if surface else 0.0
+    return ContactSizes(coarse, contact, axial, fillet, neighbour, rules.rim_depth if rules.rim_depth is not None else 3.0 * m,
+                        rules.growth, ext_u, ext_z, rules.teeth)
