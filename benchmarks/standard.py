@@ -31,7 +31,7 @@ from tca.pair.te import path_of_contact
 from pipelines.cases.reader import CASES_DIR, load_case
 from pipelines.cases.stress import read_stress_case
 from pipelines.models.stress.run import run_stress
-from pipelines.sweep.points import loaded_te
+from pipelines.models.stress.results import loaded_te
 
 __all__ = ["main"]
 

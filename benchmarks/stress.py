@@ -56,7 +56,8 @@ from tca.errors import InputError
 from benchmarks.fem import hertz_row, linear_solve_times
 from pipelines.cases.reader import CASES_DIR, load_case
 from benchmarks.convergence import richardson
-from pipelines.cases.stress import StressCase, read_stress_case
+from pipelines.cases.stress import read_stress_case
+from pipelines.models.stress.case import StressCase
 from pipelines.models.stress.run import build_scene, run_stress
 from pipelines.models.stress.model import mesh_scene, solve_scene
 

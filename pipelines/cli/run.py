@@ -30,7 +30,8 @@ from pipelines.cli.outdir import staged_output
 from pipelines.report.html import run_html
 from pipelines.report.run import run_pipeline
 from pipelines.cases.schema import Table
-from pipelines.cases.stress import StressCase, read_stress_case
+from pipelines.cases.stress import read_stress_case
+from pipelines.models.stress.case import StressCase
 from pipelines.calculix.crosscheck import write_inp_job
 
 __all__ = ["add_args", "handle", "read_with_overrides", "SHOWN"]

@@ -37,7 +37,7 @@ import numpy as np
 
 from tca.pair.analysis import ARCSEC, PairTCAResult
 
-from pipelines.cases.stress import StressCase
+from pipelines.models.stress.case import StressCase
 
 from pipelines.models.stress.run import StressRun, run_stress
 

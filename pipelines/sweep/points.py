@@ -49,13 +49,13 @@ from tca.errors import InputError
 from tca.pair.analysis import ARCSEC
 
 from pipelines.cases.schema import Table
+from pipelines.models.stress.results import loaded_te
 
-__all__ = ["POSITION_KEYS", "STEP_KEY", "validate_stress", "run_point_stress", "loaded_te", "second_pair_gap",
+__all__ = ["POSITION_KEYS", "STEP_KEY", "validate_stress", "run_point_stress", "second_pair_gap",
            "stress_scalars", "expand_positions", "plot_cycle", "write_cycle_report"]
 
 POSITION_KEYS = ("position", "phi1_deg", "roll_deg")  # keys of a stress case that choose the position
 STEP_KEY = "positions.step"  # the CSV/axis column of a [positions] steps expansion
-TWIN_RING_AXIS = (0.0, 0.0, -1.0)  # the ring turns positively about -z_f (stress_scene.twin_scene)
 
 _SCALARS = ("max_von_mises_mpa", "max_contact_pressure_mpa", "contact_force_n", "contact_area_mm2",
             "max_fillet_stress_mpa", "max_fillet_von_mises_mpa", "torque_balance_error",
@@ -120,20 +120,6 @@ def second_pair_gap(case, phi1: float) -> float:
 
     mc = mesh_contact(run_pair_tca(case.pair, case.tca), phi1)  # next_gap: tca.pair.te (ties of conjugate flanks)
     return mc.next_gap / abs(mc.arms[1]) if mc.arms[1] else float("inf")
-
-
-def loaded_te(case, summary: dict) -> dict:
-    """Unloaded TE, elastic rotation of the driven body and loaded TE [arcsec] (module docstring)."""
-    if case.model == "pair":
-        body, axis = case.pair.gear2.name, np.asarray(case.pair.mounts()[1].axis, float)
-        te = summary["position"]["te_arcsec"]
-    else:
-        body, axis = "ring", np.array(TWIN_RING_AXIS)
-        te = summary["position"]["te3_arcsec"]
-    w = np.asarray(summary["rigid_motion"][body]["rotation_rad"], float)
-    d = float(w @ axis) / ARCSEC
-    return {"body": body, "axis": axis.tolist(), "unloaded_te_arcsec": te, "elastic_rotation_arcsec": d,
-            "loaded_te_arcsec": te + d}
 
 
 def run_point_stress(case_dict: dict, out: Path) -> dict:

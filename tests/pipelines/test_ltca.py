@@ -16,7 +16,8 @@ from fem.verification import cantilever
 from pipelines.cases.reader import load_case
 from pipelines.cases.schema import Table
 from pipelines.cli import main
-from pipelines.cases.ltca import LTCAOptions, read_ltca_case
+from pipelines.cases.ltca import read_ltca_case
+from pipelines.models.ltca.options import LTCAOptions
 from pipelines.models.ltca.contact import _active_set
 from pipelines.models.ltca.run import TARGETS, build_model, fe_check, positions, solve_positions
 from tca.errors import InputError

@@ -31,10 +31,10 @@ import numpy as np
 from tca.pair.analysis import ARCSEC, run_pair_tca
 from tca.planetary.subgear import MeshTE
 
-from pipelines.cases.ltca import LTCAOptions
+from pipelines.models.ltca.options import LTCAOptions
 from pipelines.models.ltca.compliance import flank_compliance, strip_constant, weber_constant
 from pipelines.models.ltca.contact import contact_lines, solve_contact
-from pipelines.cases.stress import StressCase
+from pipelines.models.stress.case import StressCase
 from pipelines.models.stress.model import ELEMENTS
 from pipelines.models.stress.scene import mesh_contact
 
@@ -246,7 +246,7 @@ def check_indices(rows: list, n: int) -> list[int]:
 def fe_check(model: LTCAModel, rows: list, indices: list[int], out: Path | None = None, say=None) -> dict:
     """Full contact FE (``gearfe stress`` of the same case) at the rows' positions and torques against the loaded TCA."""
     from pipelines.models.stress.run import run_stress
-    from pipelines.sweep.points import loaded_te
+    from pipelines.models.stress.results import loaded_te
 
     pts = []
     for n, i in enumerate(indices):

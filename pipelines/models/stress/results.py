@@ -45,11 +45,14 @@ from fem.contact import bilinear, project_to_faces, surface_mass
 from fem.result import STRESS_RECOVERY, FEResult
 from fem.model import FEModel
 from fem.mesh.hexmesh import HexMesh
-from tca.pair.analysis import ContactKind
+from tca.pair.analysis import ARCSEC, ContactKind
 
 from pipelines.models.stress.scene import Scene
 
-__all__ = ["EDGE_FRACTION", "boundary_nodes", "pressure_at", "pair_results", "member_teeth", "summarize", "lumped_peak"]
+__all__ = ["EDGE_FRACTION", "boundary_nodes", "pressure_at", "pair_results", "member_teeth", "summarize", "lumped_peak", "loaded_te",
+           "TWIN_RING_AXIS"]
+
+TWIN_RING_AXIS = (0.0, 0.0, -1.0)  # the ring turns positively about -z_f (scene.twin_scene)
 
 EDGE_FRACTION = 0.05
 
@@ -272,3 +275,16 @@ def summarize(scene: Scene, mesh: HexMesh, model: FEModel, r: FEResult) -> dict:
         "edge_contact_rule": f"pressure at a loaded flank's boundary nodes > {EDGE_FRACTION:g} x the interface's peak",
     }
 
+
+def loaded_te(case, summary: dict) -> dict:
+    """Unloaded TE, elastic rotation of the driven body and loaded TE [arcsec] (:mod:`pipelines.sweep.points`: the driving body is held still)."""
+    if case.model == "pair":
+        body, axis = case.pair.gear2.name, np.asarray(case.pair.mounts()[1].axis, float)
+        te = summary["position"]["te_arcsec"]
+    else:
+        body, axis = "ring", np.array(TWIN_RING_AXIS)
+        te = summary["position"]["te3_arcsec"]
+    w = np.asarray(summary["rigid_motion"][body]["rotation_rad"], float)
+    d = float(w @ axis) / ARCSEC
+    return {"body": body, "axis": axis.tolist(), "unloaded_te_arcsec": te, "elastic_rotation_arcsec": d,
+            "loaded_te_arcsec": te + d}

@@ -85,7 +85,7 @@ from tca.pair.te import grid_index, position_angle
 from tca.planetary.subgear import phi1_grid, run_subgear_tca
 from tca.planetary.regulation import nominal_peak, regulate_member, twin_te
 
-from pipelines.cases.stress import StressCase
+from pipelines.models.stress.case import StressCase
 from pipelines.models.stress.model import check_resources, mesh_scene, solve_scene
 from pipelines.models.stress.results import member_teeth, summarize
 from pipelines.models.stress.scene import Scene, pair_scene, twin_scene
