@@ -20,7 +20,7 @@ import numpy as np
 from tca.pair.analysis import ARCSEC, ContactKind
 from tca.planetary.regulation import TrainRegulation, TrainTE, member_d_ex, periodic_peak, regulate_train
 
-from pipelines.cases.planetary import read_installment, read_train
+from pipelines.cases.planetary import read_installment, read_regulation_options, read_train
 from pipelines.cases.reader import ARCMIN, read_tca_options
 from pipelines.render.plots import savefig
 from pipelines.cases.schema import Table
@@ -34,15 +34,10 @@ __all__ = ["run", "plot_train_te", "plot_members", "plot_twin_contact_paths"]
 def run(case: Table, out: Path) -> dict:
     train = read_train(case)
     errors = read_installment(case.table("installment", required=False), train.planets)
-    rt = case.table("regulation", required=False)
-    tol, maxiter = 1e-3, 12
-    if rt is not None:
-        tol = rt.get("tol_arcsec", float, tol, lo=1e-6, hi=10.0)
-        maxiter = rt.get("max_iterations", int, maxiter, lo=2, hi=50)
-        rt.done()
+    ro = read_regulation_options(case.table("regulation", required=False))
     opts = read_tca_options(case.table("tca", required=False))
     title = case.get("title", str, "")
-    reg = regulate_train(train, errors, opts, tol * ARCSEC, maxiter, progress=lambda m: print(f"  {m}", flush=True))
+    reg = regulate_train(train, errors, opts, ro.tol, ro.max_iterations, progress=lambda m: print(f"  {m}", flush=True))
 
     write_te_csv(reg, out / "te.csv")
     plot_train_te(reg, out / "fig14_te.png", title)

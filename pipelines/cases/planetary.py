@@ -2,13 +2,51 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from tca.errors import InputError
 from tca.planetary.train import PlanetaryTrain, ShaftErrors
 
+from tca.units import ARCSEC
+
 from pipelines.cases.reader import ARCMIN, read_gears
+from pipelines.models.stress.case import REGULATION
 from pipelines.cases.schema import Table
 
-__all__ = ["read_train", "read_installment"]
+__all__ = ["read_train", "read_installment", "RegulationOptions", "read_regulation_options"]
+
+
+@dataclass(frozen=True)
+class RegulationOptions:
+    """The ``[regulation]`` table: the iteration of Step 3 (tolerance [rad], iterations) and, in stress cases,
+    the mode, the given axial displacements dz [mm] of members a, b and the members' phase ('' = default)."""
+
+    tol: float = 1e-3 * ARCSEC
+    max_iterations: int = 12
+    mode: str = "tca"
+    dz: tuple = (0.0, 0.0)
+    member_phase: str = ""
+
+
+def read_regulation_options(t: Table | None, stress: bool = False, phases: tuple = ()) -> RegulationOptions:
+    """``[regulation]`` of a planetary (``tol_arcsec``, ``max_iterations``) or, with ``stress``, a twin stress case
+    (also ``mode``, ``dz_a_mm``, ``dz_b_mm``, ``member_phase`` among ``phases``); the one reader of that table."""
+    if t is None:
+        return RegulationOptions()
+    mode, dz, phase = "tca", (0.0, 0.0), ""
+    if stress:
+        mode = t.get("mode", str, "tca", choices=REGULATION)
+        phase = t.get("member_phase", str, "", choices=("",) + tuple(phases))
+        if mode == "given":
+            dz = (t.get("dz_a_mm", float, lo=-1000.0, hi=1000.0), t.get("dz_b_mm", float, lo=-1000.0, hi=1000.0))
+        else:
+            for k in ("dz_a_mm", "dz_b_mm"):
+                if t.has(k):
+                    raise InputError(f"regulation.{k}", t.data[k], "set only with mode = 'given'")
+    tol = t.get("tol_arcsec", float, 1e-3, lo=1e-6, hi=10.0)
+    maxit = t.get("max_iterations", int, 12, lo=2, hi=50)
+    t.done()
+    return RegulationOptions(tol * ARCSEC, maxit, mode, dz, phase)
 
 def read_train(case: Table) -> PlanetaryTrain:
     """Train from the case: gears sun, planet, ring; ``planets``; ``member_gap_mm``."""

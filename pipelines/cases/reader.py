@@ -82,7 +82,7 @@ def load_case(path: str | Path) -> Table:
         raw = path.read_bytes()
     except OSError as e:
         raise InputError("CASE", name, "a readable TOML file", e.strerror or type(e).__name__) from None
-    return Table(parse_case_text(raw, name), "")
+    return Table(parse_case_text(raw, name), "", path)
 
 
 def parse_case_text(raw: bytes, name: str = "CASE") -> dict:

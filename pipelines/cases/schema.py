@@ -29,10 +29,11 @@ REQUIRED: Any = _Required()
 class Table:
     """A TOML table being read; remembers which keys were used."""
 
-    def __init__(self, data: dict, path: str = ""):
+    def __init__(self, data: dict, path: str = "", source=None):
         if not isinstance(data, dict):
             raise InputError(path or "<root>", data, "a TOML table")
         self.data, self.path, self._seen = data, path, set()
+        self.source = source  # the file the table was read from (a Path), None for tables built in code
 
     def _key(self, key: str) -> str:
         return f"{self.path}.{key}" if self.path else key
@@ -93,7 +94,7 @@ class Table:
             if required:
                 raise InputError(self._key(key), None, "a table", "missing table")
             return None
-        return Table(self.data[key], self._key(key))
+        return Table(self.data[key], self._key(key), self.source)
 
     def tables(self, key: str, required: bool = True) -> list["Table"]:
         """An array of tables (``[[key]]``)."""
@@ -105,7 +106,7 @@ class Table:
         v = self.data[key]
         if not isinstance(v, list):
             raise InputError(self._key(key), v, "an array of tables")
-        return [Table(x, f"{self._key(key)}[{i}]") for i, x in enumerate(v)]
+        return [Table(x, f"{self._key(key)}[{i}]", self.source) for i, x in enumerate(v)]
 
     def done(self) -> None:
         """Raise for keys that nobody read (typos, unsupported options)."""

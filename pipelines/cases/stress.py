@@ -6,14 +6,13 @@ from __future__ import annotations
 import math
 
 from tca.errors import InputError
-from tca.pair.analysis import ARCSEC
 from tca.pair.te import POSITIONS
 from tca.planetary.train import ShaftErrors
 
 from pipelines.cases.reader import ARCMIN, read_gears, read_pair, read_tca_options
 from pipelines.cases.schema import Table
-from pipelines.cases.planetary import read_train
-from pipelines.models.stress.case import MODELS, REGULATION, StressCase
+from pipelines.cases.planetary import read_regulation_options, read_train
+from pipelines.models.stress.case import MODELS, StressCase
 from pipelines.models.stress.model import FESettings
 from pipelines.models.stress.scene import PHASES
 from pipelines.models.stress.sizing import SizeRules
@@ -127,24 +126,11 @@ def read_stress_case(case: Table) -> StressCase:
             errors = ShaftErrors(d_ex=st.get("d_ex_um", float, 0.0, lo=-1000.0, hi=1000.0) * 1e-3,
                                  d_gamma=st.get("d_gamma_arcmin", float, 0.0, lo=-60.0, hi=60.0) * ARCMIN)
             st.done()
-        rt = case.table("regulation", required=False)
-        mode, dz, tol, maxit, phase = "tca", (0.0, 0.0), 1e-3, 12, ""
-        if rt is not None:
-            mode = rt.get("mode", str, "tca", choices=REGULATION)
-            phase = rt.get("member_phase", str, "", choices=("",) + PHASES)
-            if mode == "given":
-                dz = (rt.get("dz_a_mm", float, lo=-1000.0, hi=1000.0), rt.get("dz_b_mm", float, lo=-1000.0, hi=1000.0))
-            else:
-                for k in ("dz_a_mm", "dz_b_mm"):
-                    if rt.has(k):
-                        raise InputError(f"regulation.{k}", rt.data[k], "set only with mode = 'given'")
-            tol = rt.get("tol_arcsec", float, tol, lo=1e-6, hi=10.0)
-            maxit = rt.get("max_iterations", int, maxit, lo=2, hi=50)
-            rt.done()
+        ro = read_regulation_options(case.table("regulation", required=False), stress=True, phases=PHASES)
         if tca.steps_per_cycle % train.planets:
             raise InputError("tca.steps_per_cycle", tca.steps_per_cycle, f"a multiple of the number of planets n = {train.planets}")
-        out = StressCase("twin", torque, title, train=train, errors=errors, regulation=mode, dz=dz,
-                         regulation_tol=tol * ARCSEC, regulation_maxiter=maxit, member_phase=phase, position=pos, phi1=phi1, roll=roll, tca=tca,
+        out = StressCase("twin", torque, title, train=train, errors=errors, regulation=ro.mode, dz=ro.dz,
+                         regulation_tol=ro.tol, regulation_maxiter=ro.max_iterations, member_phase=ro.member_phase, position=pos, phi1=phi1, roll=roll, tca=tca,
                          mesh=mesh, fe=fe)
     case.done()
     return out

@@ -18,9 +18,8 @@ import time
 from pathlib import Path
 
 from pipelines.cli.interrupt import check_interrupted
-from pipelines.cases.reader import load_case
 from pipelines.cli.outdir import staged_output
-from pipelines.cases.ltca import read_ltca_case
+from pipelines.cases.kinds import read_case
 from pipelines.models.ltca.run import progress_bar, run_ltca
 
 __all__ = ["add_args", "handle"]
@@ -38,7 +37,7 @@ def _say(msg: str) -> None:
 
 def handle(args) -> int:
     t0 = time.perf_counter()
-    case, opts = read_ltca_case(load_case(args.case))  # bad input fails here, before any output
+    _, (case, opts) = read_case(args.case, "ltca")  # bad input fails here, before any output
     with staged_output(args.out) as tmp:
         s = run_ltca(case, opts, Path(tmp), say=_say, bar=progress_bar("gearfe ltca: positions"))
         s = {**s, "case": str(args.case), "elapsed_s": time.perf_counter() - t0}

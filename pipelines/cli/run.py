@@ -30,7 +30,7 @@ from pipelines.cli.outdir import staged_output
 from pipelines.report.html import run_html
 from pipelines.report.run import run_pipeline
 from pipelines.cases.schema import Table
-from pipelines.cases.stress import read_stress_case
+from pipelines.cases.kinds import kind_of, read_checked
 from pipelines.models.stress.case import StressCase
 from pipelines.calculix.crosscheck import write_inp_job
 
@@ -81,7 +81,8 @@ def read_with_overrides(path, args) -> StressCase:
         if not isinstance(data.get("mesh", {}), dict):
             raise InputError("mesh", data["mesh"], "a table [mesh] (--refine sets mesh.refine)")
         data["mesh"] = {**data.get("mesh", {}), "refine": args.refine}
-    return read_stress_case(Table(data, ""))
+    t = Table(data, "")
+    return read_checked(t, kind_of(t, args.command), args.command)
 
 
 def progress(msg: str) -> None:

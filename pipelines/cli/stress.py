@@ -21,9 +21,8 @@ import time
 from pathlib import Path
 
 from pipelines.cli.interrupt import check_interrupted
-from pipelines.cases.reader import load_case
 from pipelines.cli.outdir import staged_output
-from pipelines.cases.stress import read_stress_case
+from pipelines.cases.kinds import read_case
 from pipelines.calculix.crosscheck import write_inp_job
 from pipelines.models.stress.run import run_stress
 
@@ -49,7 +48,7 @@ def _progress(msg: str) -> None:
 
 def handle(args) -> int:
     t0 = time.perf_counter()
-    case = read_stress_case(load_case(args.case))  # bad input fails here, before any output
+    _, case = read_case(args.case, "stress")  # bad input fails here, before any output
     with staged_output(args.out) as tmp:
         run = run_stress(case, Path(tmp), progress=_progress)
         summary = run.summary

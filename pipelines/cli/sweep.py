@@ -177,7 +177,8 @@ def _validate(task: str, point: dict) -> None:
 
 def run_point(task: str, point: dict, out_dir: str) -> dict:
     """Run one grid point into out_dir/cases/<id> (atomically); returns its row for results.csv."""
-    from pipelines.cli.tca import run_case, to_json
+    from pipelines.cli.tca import run_case
+    from pipelines.jsonio import to_json
 
     final = Path(out_dir) / "cases" / point["id"]
     row = {"id": point["id"], **point["values"]}

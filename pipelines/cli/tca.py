@@ -1,6 +1,6 @@
 """Tooth contact analysis of a case: a gear pair, a planetary train (Parts 1 and 3), a face-gear train (Part 2).
 
-The case file's ``kind`` selects the analysis (``pair``, and the planetary kinds as they are added);
+The case file's ``kind`` selects the analysis (the registry :mod:`pipelines.cases.kinds`);
 results go to ``--out DIR``: ``summary.json`` (key numbers), ``tca.csv`` (per position) and PNG plots.
 Nothing is written when the case is invalid or a solve fails.
 """
@@ -8,27 +8,17 @@ Nothing is written when the case is invalid or a solve fails.
 from __future__ import annotations
 
 import argparse
-import importlib
 import json
 import time
 from pathlib import Path
 
-from tca.errors import InputError
 
 from pipelines.cases.reader import load_case
-from pipelines.cases.validate import validate_case
+from pipelines.cases.kinds import analysis_module, kind_of, validate_case
 from pipelines.cli.outdir import staged_output
+from pipelines.jsonio import to_json
 
-__all__ = ["add_args", "handle", "run_case", "to_json", "KINDS"]
-
-# case kind -> module in pipelines with run(case: Table, out: Path) -> dict (the summary)
-KINDS = {
-    "pair": "pipelines.analyses.pair",
-    "planetary": "pipelines.analyses.planetary",
-    "isostatic": "pipelines.analyses.isostatic",
-    "face_train": "pipelines.analyses.face",
-}
-
+__all__ = ["add_args", "handle", "run_case"]
 
 def add_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("case", help="case file (TOML), e.g. pipelines/cases/part1_sun_planet.toml")
@@ -37,37 +27,24 @@ def add_args(p: argparse.ArgumentParser) -> None:
 
 def run_case(case, out: Path, label: str = "") -> dict:
     """Run a TCA case (a strict Table) writing its files into `out`; returns the summary (also written)."""
-    kind = case.get("kind", str, choices=tuple(KINDS))
+    kind = kind_of(case, "tca")
+    case.get("kind", str)
     case.get("title", str, "")
-    mod = importlib.import_module(KINDS[kind])
     t0 = time.perf_counter()
-    summary = mod.run(case, Path(out))
+    summary = analysis_module(kind).run(case, Path(out))
     case.done()
-    summary = {"kind": kind, "case": label, **summary, "elapsed_s": time.perf_counter() - t0}
+    summary = {"kind": kind.name, "case": label, **summary, "elapsed_s": time.perf_counter() - t0}
     (Path(out) / "summary.json").write_text(json.dumps(summary, indent=2, default=to_json) + "\n")
     return summary
 
 
 def handle(args) -> int:
     case = load_case(args.case)
-    validate_case(case)  # every key, range and geometry check before any work
+    validate_case(case, "tca")  # every key, range and geometry check before any work
     with staged_output(args.out) as tmp:
         summary = run_case(case, Path(tmp), str(args.case))
     _print_summary(summary, args.out)
     return 0
-
-
-def to_json(x):
-    """json.dumps default for numpy scalars and arrays."""
-    import numpy as np
-
-    if isinstance(x, (np.floating, np.integer)):
-        return x.item()
-    if isinstance(x, np.ndarray):
-        return x.tolist()
-    if isinstance(x, (np.bool_,)):
-        return bool(x)
-    raise InputError("summary", type(x).__name__, "JSON-serialisable values")
 
 
 def _print_summary(summary: dict, out) -> None:

@@ -68,7 +68,6 @@ Case file (TOML, ``kind = "stress"``)::
 
 from __future__ import annotations
 
-import json
 import math
 import time
 from dataclasses import dataclass
@@ -85,6 +84,7 @@ from tca.pair.te import grid_index, position_angle
 from tca.planetary.subgear import phi1_grid, run_subgear_tca
 from tca.planetary.regulation import nominal_peak, regulate_member, twin_te
 
+from pipelines.jsonio import plain
 from pipelines.models.stress.case import StressCase
 from pipelines.models.stress.model import check_resources, mesh_scene, solve_scene
 from pipelines.models.stress.results import member_teeth, summarize
@@ -152,27 +152,6 @@ def _build(case: StressCase, progress=None):
            "phi1_grid_deg": [math.degrees(grid[0]), math.degrees(grid[-1])], "regulation": reg,
            "member_te_max_arcsec": {k: float(tw.members[k].te3.max() / ARCSEC) for k in ("a", "b")}}
     return scene, rec, tw
-
-
-def _json(x):
-    if isinstance(x, (np.floating, np.integer)):
-        return x.item()
-    if isinstance(x, np.ndarray):
-        return x.tolist()
-    if isinstance(x, np.bool_):
-        return bool(x)
-    raise InputError("summary", type(x).__name__, "JSON-serialisable values")
-
-
-def _finite(x):
-    """Replace non-finite floats (JSON has none) by None, recursively."""
-    if isinstance(x, float) and not math.isfinite(x):
-        return None
-    if isinstance(x, dict):
-        return {k: _finite(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_finite(v) for v in x]
-    return x
 
 
 def _warnings(scene, approach: float, interfaces: dict) -> list[str]:
@@ -290,5 +269,5 @@ def run_stress(case: StressCase, out: Path, progress=None) -> StressRun:
         "mesh": {"refine": case.mesh.refine, "teeth": case.mesh.teeth, "parts": len(scene.parts)},
         "files": ["result.vtu"],
     }
-    return StressRun(_finite(json.loads(json.dumps(summary, default=_json))), tca_obj, scene, mesh, r)
+    return StressRun(plain(summary), tca_obj, scene, mesh, r)
 
