@@ -1,6 +1,7 @@
 r"""Finite element model of a gear pair at a position found by TCA (Steps 5–6, Figs. 1.7–1.8).
 
-The TCA (:func:`tca.pair.analysis.run_pair_tca`) gives at position i the angles :math:`\phi_1, \phi_2`,
+Placement follows :mod:`mesher.placement` (the one path shared with the stress scenes). The TCA
+(:func:`tca.pair.analysis.run_pair_tca`, :func:`tca.pair.te.mesh_contact`) gives at position i the angles :math:`\phi_1, \phi_2`,
 the index k of the pair in contact and the contact point on the reference teeth (parameters
 :math:`u_1, v_1, u_2, v_2`). The reference pair solved at :math:`\phi_1 - 2\pi k/N_1` is, at
 :math:`\phi_1`, tooth :math:`j_0 = -k \bmod N` of each gear (both teeth turned by −k pitches), so
@@ -31,9 +32,10 @@ import numpy as np
 from tca.errors import InputError
 from tca.pair.gear_pair import GearPair
 from tca.pair.analysis import ContactKind, PairTCAResult, TCAOptions, run_pair_tca
-from tca.pair.te import grid_index
+from tca.pair.te import grid_index, mesh_contact
 
-from mesher.body import Focus, MeshOptions, mesh_gear
+from mesher.body import Focus, MeshOptions
+from mesher.placement import gear_pose, loaded_tooth, mesh_placed
 from fem.mesh.hexmesh import HexMesh, merge_meshes
 
 __all__ = ["PairModel", "member_pair", "choose_position", "mesh_pair"]
@@ -95,20 +97,19 @@ def mesh_pair(pair: GearPair, position="max_te", opts1: MeshOptions = MeshOption
     if tca is None:
         tca = run_pair_tca(mp, tca_options)
     i = choose_position(tca, position)
-    k = int(tca.active_pair[i])
-    u1, v1, u2, v2 = (float(x) for x in tca.params[i])
-    kind = int(tca.kind[i])
+    c_i = mesh_contact(tca, float(tca.phi1[i]))  # the contact at the grid angle (the scenes' one path)
+    k = c_i.k
+    u1, v1, u2, v2 = (float(x) for x in c_i.params)
+    kind = int(c_i.kind)
     if kind == ContactKind.NONE:
         raise InputError("position", i, "a position with contact")
     m1, m2 = pair.mounts()
     c2 = c * _axis_sign(pair)
-    j1, j2 = (-k) % g1.teeth, (-k) % g2.teeth
+    j1, j2 = loaded_tooth(g1, k), loaded_tooth(g2, k)
     meshes = []
-    for g, o, j, f, phi, mnt, off in ((g1, opts1, j1, Focus(pair.side1, u1, v1), tca.phi1[i], m1, c),
-                                      (g2, opts2, j2, Focus(pair.side2, u2, v2), tca.phi2[i], m2, c2)):
-        hm = mesh_gear(g, o, centre=j, focus=f, member_offset=off if o.gap is not None else None)
-        R, _ = mnt.rotation(phi)
-        meshes.append(hm.transformed(R, mnt.origin))
+    for g, o, j, f, phi, mnt, off in ((g1, opts1, j1, Focus(pair.side1, u1, v1), c_i.phi1, m1, c),
+                                      (g2, opts2, j2, Focus(pair.side2, u2, v2), c_i.phi2, m2, c2)):
+        meshes.append(mesh_placed(g, o, j, f, gear_pose(mnt, phi), member_offset=off if o.gap is not None else None))
     teeth1 = meshes[0].meta["bodies"][g1.name]["teeth"]
     teeth2 = meshes[1].meta["bodies"][g2.name]["teeth"]
     if len(teeth1) != len(teeth2):
@@ -116,7 +117,7 @@ def mesh_pair(pair: GearPair, position="max_te", opts1: MeshOptions = MeshOption
     order = sorted(range(len(teeth1)), key=lambda q: (teeth1[q] != j1, q))  # the loaded pair first
     pairs = tuple((f"{g1.name}/tooth{teeth1[q]}/flank_{_SIDE[pair.side1]}",
                    f"{g2.name}/tooth{teeth2[q]}/flank_{_SIDE[pair.side2]}") for q in order)
-    p_f = tca.point_f[i] + np.array([0.0, 0.0, c])
+    p_f = np.asarray(c_i.point, float) + np.array([0.0, 0.0, c])
     nodes = []
     for hm, g, j, side in ((meshes[0], g1, j1, pair.side1), (meshes[1], g2, j2, pair.side2)):
         ids = hm.point_sets[f"{g.name}/tooth{j}/flank_{_SIDE[side]}"]
@@ -124,7 +125,7 @@ def mesh_pair(pair: GearPair, position="max_te", opts1: MeshOptions = MeshOption
         nodes.append(int(ids[np.argmin(d)]))
     gap = float(np.linalg.norm(meshes[0].points[nodes[0]] - meshes[1].points[nodes[1]]))
     meta = {"bodies": {**meshes[0].meta["bodies"], **meshes[1].meta["bodies"]},
-            "position": {"index": i, "phi1_deg": math.degrees(tca.phi1[i]), "phi2_deg": math.degrees(tca.phi2[i]),
+            "position": {"index": i, "phi1_deg": math.degrees(c_i.phi1), "phi2_deg": math.degrees(c_i.phi2),
                          "te_arcsec": float(tca.te_arcsec[i]), "active_pair": k, "kind": ContactKind.names[kind],
                          "contact_point_mm": p_f.tolist(), "params_mm": [u1, v1, u2, v2],
                          "loaded_teeth": [j1, j2], "contact_node_gap_mm": gap, "member_offset_mm": c},

@@ -56,7 +56,7 @@ def test_a_cycle_of_angles_builds_every_scene(drive):
     angles = phi_c + np.linspace(0.0, c.pair.gear1.pitch_angle, 41)[:-1] + 1e-4  # off the grid too
     doubles = 0
     for phi in np.concatenate([angles, np.asarray(r.phi1[:-1])]):
-        sc = pair_scene(c.pair, r, float(phi), c.torque, c.mesh, c.fe.E, c.fe.nu)
+        sc = pair_scene(c.pair, r, float(phi), c.torque, c.mesh, c.fe.material)
         itf = sc.interfaces[0]
         assert itf.hertz.line and itf.hertz.b > 0
         mc = itf.contact
@@ -97,7 +97,7 @@ def test_shifted_spur_pair_of_the_issue_runs_at_every_angle():
         mc = mesh_contact(r, position_angle(r, pos))
         assert _t(path, mc.point) == pytest.approx(path.t(pos), abs=2e-3)
     for phi in path.phi1(path.t_c) + np.linspace(0.0, c.pair.gear1.pitch_angle, 41)[:-1]:
-        sc = pair_scene(c.pair, r, float(phi), c.torque, c.mesh, c.fe.E, c.fe.nu)
+        sc = pair_scene(c.pair, r, float(phi), c.torque, c.mesh, c.fe.material)
         assert sc.interfaces[0].hertz.line
 
 

@@ -88,7 +88,7 @@ from pipelines.jsonio import plain
 from pipelines.models.stress.case import StressCase
 from pipelines.models.stress.model import check_resources, mesh_scene, solve_scene
 from pipelines.models.stress.results import member_teeth, summarize
-from pipelines.models.stress.scene import Scene, pair_scene, twin_scene
+from pipelines.models.stress.scene import Scene, TwinSetting, pair_scene, twin_scene
 
 __all__ = ["StressRun", "run_stress", "build_scene"]
 
@@ -131,11 +131,11 @@ def build_scene(case: StressCase, progress=None):
 
 def _build(case: StressCase, progress=None):
     """:func:`build_scene` and the TCA result (PairTCAResult, or TwinTE of the twin drive)."""
-    E, nu = case.fe.E, case.fe.nu
+    mat = case.fe.material
     if case.model == "pair":
         r = run_pair_tca(case.pair, case.tca)
         phi1 = position_angle(r, case.position, case.phi1, case.roll)
-        scene = pair_scene(case.pair, r, phi1, case.torque, case.mesh, E, nu)
+        scene = pair_scene(case.pair, r, phi1, case.torque, case.mesh, mat)
         rec = {"te_peak_to_peak_arcsec": r.te_peak_to_peak_arcsec, "edge_contact": r.edge_contact,
                "elapsed_s": r.elapsed}
         return scene, rec, r
@@ -146,7 +146,7 @@ def _build(case: StressCase, progress=None):
     grid = phi1_grid(case.train, case.tca)
     subs = {k: run_subgear_tca(case.train, 0, k, case.errors, dz[0 if k == "a" else 1], case.tca, np.array([phi1]), cache)
             for k in ("a", "b")}
-    scene = twin_scene(case.train, subs, case.errors, dz, phi1, case.torque, case.mesh, E, nu, case.member_phase)
+    scene = twin_scene(case.train, subs, TwinSetting(case.errors, dz, case.member_phase), phi1, case.torque, case.mesh, mat)
     rec = {"twin_te_peak_to_peak_arcsec": float(np.ptp(tw.te) / ARCSEC), "twin_te_max_arcsec": float(tw.te.max() / ARCSEC),
            "edge_contact": bool(tw.members["a"].edge_contact or tw.members["b"].edge_contact),
            "phi1_grid_deg": [math.degrees(grid[0]), math.degrees(grid[-1])], "regulation": reg,

@@ -58,6 +58,8 @@ import numpy as np
 
 from mesher import Focus, ReferencePoint
 from mesher.body import model_teeth
+from mesher.placement import IDENTITY, Pose, gear_pose, loaded_tooth
+from fem.material import Material
 from tca.errors import InputError
 from tca.geometry.gear import Gear
 from tca.pair.gear_pair import GearPair
@@ -72,7 +74,7 @@ from tca.units import ARCSEC
 from pipelines.models.stress.sizing import ContactSizes, HertzContact, SizeRules, contact_sizes, hertz_contact
 
 __all__ = ["MeshContact", "mesh_contact", "contact_length", "Part", "Interface", "RigidBody", "Reaction",
-           "Scene", "pair_scene", "twin_scene", "PHASES"]
+           "Scene", "Placing", "TwinSetting", "pair_scene", "twin_scene", "PHASES"]
 
 _SIDE = {1: "pos", -1: "neg"}
 
@@ -154,19 +156,6 @@ class Scene:
     info: dict = field(default_factory=dict)  # position, TE, regulation (JSON-ready)
 
 
-def _affine(R, t, Rm, tm):
-    """Compose x -> R (Rm x + tm) + t."""
-    return R @ Rm, R @ tm + t
-
-
-def _part(body, label, gear, contact_k, params, side, phi, mount, frame, sizes, teeth):
-    u, v = params
-    focus = Focus(side, u, v, sizes.extent_u, sizes.extent_z)
-    Rm, _ = mount.rotation(phi)
-    R, t = _affine(frame[0], frame[1], Rm, mount.origin)
-    return Part(body, label, gear, (-contact_k) % gear.teeth, focus, replace(sizes, teeth=teeth), R, t)
-
-
 def _load(pair: GearPair, c: MeshContact, torque: float) -> float:
     """Normal load [N] transmitting `torque` [N mm] to the driven gear through the contact point."""
     _, m2 = pair.mounts()
@@ -174,9 +163,22 @@ def _load(pair: GearPair, c: MeshContact, torque: float) -> float:
     return abs(torque) / arm
 
 
-def _interface(name, member, pair, c, torque, rules, E, nu, frame, bodies, labels, slave):
-    """Driver and driven parts of one mesh at its contact, with Hertz-based sizes."""
-    hz = hertz_contact(c.curvature, _load(pair, c, torque), E, nu, contact_length(pair))
+@dataclass(frozen=True, eq=False)
+class Placing:
+    """Where a meshing pair goes in a scene: interface name and member, the bodies and part labels of driver
+    and driven, which side is the slave, and the frame of the pair in S_f."""
+
+    name: str  # e.g. 'sun-planet'
+    member: str  # 'a', 'b'
+    bodies: tuple  # (driver body, driven body)
+    labels: tuple = ("", "")  # part labels within the bodies ('' for a one-part body)
+    slave: str = "driven"
+    frame: Pose = IDENTITY
+
+
+def _interface(at: Placing, pair: GearPair, c: MeshContact, torque: float, rules: SizeRules, mat: Material) -> Interface:
+    """Driver and driven parts of one mesh at its contact, with Hertz-based sizes (placed by mesher.placement)."""
+    hz = hertz_contact(c.curvature, _load(pair, c, torque), mat.E, mat.nu, contact_length(pair))
     g1, g2 = pair.gear1, pair.gear2
     m1, m2 = pair.mounts()
     s1 = contact_sizes(rules, g1, hz, c.angle, c.kind)
@@ -185,11 +187,15 @@ def _interface(name, member, pair, c, torque, rules, E, nu, frame, bodies, label
     fine = {k: min(getattr(s1, k), getattr(s2, k)) for k in ("contact", "axial")}
     s1, s2 = replace(s1, **fine), replace(s2, **fine)
     u1, v1, u2, v2 = c.params
-    d = _part(bodies[0], labels[0], g1, c.k, (u1, v1), pair.side1, c.phi1, m1, frame, s1, rules.teeth)
-    n = _part(bodies[1], labels[1], g2, c.k, (u2, v2), pair.side2, c.phi2, m2, frame, s2, rules.teeth)
-    point = frame[0] @ c.point + frame[1]
-    normal = frame[0] @ c.normal
-    return Interface(name, member, d, n, pair.side1, pair.side2, c, point, normal, hz, slave)
+    parts = []
+    for i, (g, mount, side, u, v, phi, sz) in enumerate(((g1, m1, pair.side1, u1, v1, c.phi1, s1),
+                                                         (g2, m2, pair.side2, u2, v2, c.phi2, s2))):
+        pose = gear_pose(mount, phi, at.frame)
+        parts.append(Part(at.bodies[i], at.labels[i], g, loaded_tooth(g, c.k), Focus(side, u, v, sz.extent_u, sz.extent_z),
+                          replace(sz, teeth=rules.teeth), pose.R, pose.t))
+    point = at.frame.R @ c.point + at.frame.t
+    normal = at.frame.R @ c.normal
+    return Interface(at.name, at.member, parts[0], parts[1], pair.side1, pair.side2, c, point, normal, hz, at.slave)
 
 
 def contact_length(pair: GearPair) -> float:
@@ -248,13 +254,11 @@ def neighbour_params(pair: GearPair, c: MeshContact, o, extent: float) -> tuple 
 
 
 def pair_scene(pair: GearPair, result: PairTCAResult, phi1: float, torque: float, rules: SizeRules,
-               E: float, nu: float) -> Scene:
+               mat: Material) -> Scene:
     """Driver fixed, driven gear rigid (rotation free, torque -T about its axis) at driver angle phi1 [rad]."""
     c = mesh_contact(result, phi1)
     g1, g2 = pair.gear1, pair.gear2
-    frame = (np.eye(3), np.zeros(3))
-    itf = _interface(f"{g1.name}-{g2.name}", "a", pair, c, torque, rules, E, nu, frame, (g1.name, g2.name), ("", ""),
-                     "driven")
+    itf = _interface(Placing(f"{g1.name}-{g2.name}", "a", (g1.name, g2.name)), pair, c, torque, rules, mat)
     reach = rules.reach(_load(pair, c, torque), min(g1.face_width, g2.face_width))
     modelled = set(itf.driver.teeth), set(itf.driven.teeth)
     near = [o for o in c.others if o.gap <= reach and (-o.k) % g1.teeth in modelled[0]
@@ -285,16 +289,27 @@ def pair_scene(pair: GearPair, result: PairTCAResult, phi1: float, torque: float
 PHASES = ("assembled", "nominal")
 
 
-def twin_scene(train: PlanetaryTrain, subs: dict, errors: ShaftErrors, dz: tuple, phi1: float, torque: float,
-               rules: SizeRules, E: float, nu: float, phase: str = "assembled") -> Scene:
+@dataclass(frozen=True)
+class TwinSetting:
+    """The state of shaft 1 of a twin drive: its errors of installment, the axial regulation dz [mm] of
+    members a and b, and the members' phase (:func:`twin_scene`)."""
+
+    errors: ShaftErrors = field(default_factory=ShaftErrors)
+    dz: tuple = (0.0, 0.0)
+    phase: str = "assembled"
+
+
+def twin_scene(train: PlanetaryTrain, subs: dict, setting: TwinSetting, phi1: float, torque: float,
+               rules: SizeRules, mat: Material) -> Scene:
     """Twin subgear drive of shaft 1 at sun angle phi1 [rad]: sun fixed, twin planet and ring rigid (module docstring).
 
     ``subs``: member -> :class:`tca.planetary.subgear.SubgearTE` of shaft 1 (its meshes are used).
-    ``phase``: 'assembled' — each member turned on the shaft so that it touches the sun at phi1
+    ``setting.phase``: 'assembled' — each member turned on the shaft so that it touches the sun at phi1
     (members regulated in assembly, section 1.3 (2a); the four-point assumption of Step 3);
     'nominal' — the members at one angle as manufactured (a one-piece conventional planet): the
     member whose sun mesh leads turns the planet, the other keeps a backlash at the sun too.
     """
+    errors, dz, phase = setting.errors, setting.dz, setting.phase
     if phase not in PHASES:
         raise InputError("regulation.member_phase", phase, "one of " + ", ".join(repr(p) for p in PHASES))
     i = 0
@@ -332,13 +347,14 @@ def twin_scene(train: PlanetaryTrain, subs: dict, errors: ShaftErrors, dz: tuple
         c12, c23, te3 = per[k]
         own12 = mesh_contact(subs[k].mesh12.result, ph1)
         zk = train.member_sign(k) * zm
-        F1 = (A1.T, A1.T @ np.array([0.0, 0.0, zk]))
+        F1 = Pose(A1.T, A1.T @ np.array([0.0, 0.0, zk]))
         c_nom = np.array([E_c * math.cos(th), E_c * math.sin(th), zk])
-        F2 = (A2.T, c_nom)
-        s_itf = _interface("sun-planet", k, p1, c12, T_planet, rules, E, nu, F1, ("sun", "planet"), (k, f"{k}_sun"), "driven")
+        F2 = Pose(A2.T, c_nom)
+        s_itf = _interface(Placing("sun-planet", k, ("sun", "planet"), (k, f"{k}_sun"), "driven", F1), p1, c12, T_planet,
+                           rules, mat)
         # the ring turns with the member that leads: the other member keeps its backlash at the ring
-        r_itf = _interface("planet-ring", k, p2, replace(c23, phi2=phi3_lead), abs(torque), rules, E, nu, F2,
-                           ("planet", "ring"), (f"{k}_ring", k), "driver")
+        r_itf = _interface(Placing("planet-ring", k, ("planet", "ring"), (f"{k}_ring", k), "driver", F2), p2,
+                           replace(c23, phi2=phi3_lead), abs(torque), rules, mat)
         itfs += [s_itf, r_itf]
         parts += [s_itf.driver, s_itf.driven, r_itf.driver, r_itf.driven]
         members[k] = {"te3_arcsec": te3 / ARCSEC, "te12_arcsec": own12.te / ARCSEC, "te23_arcsec": c23.te / ARCSEC,
