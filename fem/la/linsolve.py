@@ -11,7 +11,7 @@ the caller chooses x_C from (S, b~_C) (the contact problem), and x_R = A_RR^-1 (
 follows by one back substitution. A_RR must be nonsingular: every body is held when its free
 rigid DOFs (in C) are clamped.
 
-Backends, chosen by measurement (MEASURED.md and ``pipelines.bench_fem``):
+Backends, chosen by measurement (MEASURED.md and ``benchmarks.fem``):
 - ``pardiso``: MKL PARDISO (SPD, or symmetric indefinite when C holds gap rows), Schur mode:
   one factorization, a forward and a backward substitution.
 - ``superlu``: pure scipy fallback; factors A_RR with SuperLU and forms S with |C| solves.

@@ -1,7 +1,7 @@
 """One load case in one command: TCA, position, mesh, contact FE, images and report (issue 7).
 
 ``gearfe run CASE.toml --out DIR`` runs a stress case (``kind = "stress"``, see
-``pipelines/stress.py`` for its keys) through every stage and writes into DIR: ``summary.json``
+:mod:`pipelines.models.stress.run` for its keys) through every stage and writes into DIR: ``summary.json``
 (every key number of ``gearfe stress`` and ``stages``: the wall time of each stage [s]),
 ``report.html`` (self-contained: tables, the case file and every image embedded),
 ``report.md``, ``result.vtu``, TCA plots (``tca_te.png``, for a pair ``tca_paths.png``) and

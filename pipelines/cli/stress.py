@@ -9,7 +9,7 @@ contact pressure and gap, reactions) and ``DIR/summary.json`` (``max_von_mises_m
 also ``DIR/job.inp``, the complete CalculiX job of the same scene (``docs/calculix.md``), for
 ``gearfe crosscheck DIR``. Progress
 lines go to stderr. Nothing is written when the case is invalid or a solve fails (exit status 2).
-See ``pipelines/stress.py`` for the case keys and ``pipelines/cases/stress_*.toml`` for examples.
+See :mod:`pipelines.models.stress.run` (docs/cases.md) for the case keys and ``pipelines/cases/stress_*.toml`` for examples.
 """
 
 from __future__ import annotations

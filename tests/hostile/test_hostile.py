@@ -16,7 +16,7 @@ import pytest
 from pipelines.cases.reader import CASES_DIR
 from pipelines.cli import main
 from tests.hostile.corpus import DELETE, corpus
-from tests.hostile.tomlw import dumps
+from tests.support.tomlw import dumps
 
 ENTRIES = corpus()
 assert len(ENTRIES) >= 150  # the corpus size

@@ -8,8 +8,8 @@ values: no published Y_F / Y_S for given gear data (ISO/TR 6336-30, DIN 3990 exa
 available to this project's sources (docs/standard_gears.md says what was searched). They are checked
 through the quantities they are built from, their trends, the rack limit that the external (E1)-(E9) and
 internal (I1)-(I4) equations share, another implementation of the same equations with the load at the tip
-(DIN 3990-11 Annex D, hanslhansl/din3990), and the FE root stress (tests/pipelines/test_standard_gears.py,
-tests/pipelines/test_internal_root.py).
+(DIN 3990-11 Annex D, hanslhansl/din3990), and the FE root stress (tests/pipelines/models/stress/test_standard_gears.py,
+tests/pipelines/models/stress/test_internal_root.py).
 """
 
 import math

@@ -17,7 +17,7 @@ torque times the ratio (N1/N2 for a pair, N1/N3 for the twin drive through the p
 A contact at a point with common normal n transmits torques in the ratio of the moment arms
 m_i = ((x - o_i) x n) . a_i, which equals the instantaneous ratio of its mesh,
 rho = m1/m2 = N1/N2 + dΔφ2/dφ1 (the TCA slope ``te_slope`` in the summary's position; they agree to
-< 1e-5 on surface contact, tests/pipelines/test_stress.py; at an edge or corner contact the TE has
+< 1e-5 on surface contact, tests/pipelines/models/stress/test_stress.py; at an edge or corner contact the TE has
 a kink and the grid slope means nothing). So the nominal ratio holds only where the loaded
 contacts' TE slopes vanish. When several pairs of teeth of one mesh carry load (near a
 transition), the mesh's ratio is their ratios rho_q = rho + slope_q - slope (slope_q of the TE branch

@@ -11,25 +11,21 @@ Measured on stress_pair_small (refine 0.5, T = 156 N m on the planet) at phi1 = 
 0.1 mm 0.545, and 0.545 again with every size halved (refine 1, 183k DOF).
 """
 
-import json
 from pathlib import Path
 
 import pytest
 
-from pipelines.cases.reader import load_case
-from pipelines.cases.schema import Table
 from pipelines.cases.stress import read_stress_case
 from pipelines.models.stress.run import run_stress
 
-CASE = Path(__file__).resolve().parents[2] / "pipelines" / "cases" / "stress_pair_small.toml"
+from tests.support.shipped import shipped_table
+
+CASE = Path(__file__).resolve().parents[4] / "pipelines" / "cases" / "stress_pair_small.toml"
 
 
 def case_at(phi1_deg, **mesh):
-    d = dict(load_case(CASE).data)
-    d.pop("position")
-    d["phi1_deg"] = phi1_deg
-    d["mesh"] = {**d.get("mesh", {}), **mesh}
-    return read_stress_case(Table(json.loads(json.dumps(d)), ""))
+    return read_stress_case(shipped_table(CASE, {"position": None, "phi1_deg": phi1_deg,
+                                                 **{f"mesh.{k}": v for k, v in mesh.items()}}))
 
 
 def next_pair_share(summary):

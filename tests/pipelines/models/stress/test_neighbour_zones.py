@@ -8,27 +8,23 @@ on the ring's tip edge and the foot of that edge on the pinion's flank, or left 
 below the pinion's form circle (such a pair can touch only in the fillet).
 """
 
-import copy
 import math
 
 import numpy as np
 import pytest
 
-from pipelines.cases.reader import load_case
-from pipelines.cases.schema import Table
 from pipelines.cases.stress import read_stress_case
 from pipelines.models.stress.run import build_scene, run_stress
+
+from tests.support.shipped import shipped_table
 from tca.contact.systems import PlacedFlank
 
 CASE = "pipelines/cases/stress_internal_pair.toml"
 
 
 def internal_case(phi1_deg, teeth=3, refine=0.5):
-    d = copy.deepcopy(load_case(CASE).data)
-    d.pop("position", None)
-    d["phi1_deg"] = phi1_deg
-    d["mesh"] = {**d.get("mesh", {}), "teeth": teeth, "refine": refine}
-    return read_stress_case(Table(d, ""))
+    return read_stress_case(shipped_table(CASE, {"position": None, "phi1_deg": phi1_deg, "mesh.teeth": teeth,
+                                                 "mesh.refine": refine}))
 
 
 @pytest.mark.parametrize("phi1_deg", [-3.75, 3.0, 3.375])

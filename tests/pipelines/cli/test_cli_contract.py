@@ -2,7 +2,7 @@
 
 Sources outside the code path: the real mesher's element counts (resource estimate), the statics
 of a gear pair (nominal normal force T / (r_b2 cos beta_b), the closed form also checked against
-the FE in tests/pipelines/test_stress.py), POSIX exit statuses 128 + signal number.
+the FE in tests/pipelines/models/stress/test_stress.py), POSIX exit statuses 128 + signal number.
 """
 
 from __future__ import annotations
@@ -17,20 +17,20 @@ from pathlib import Path
 
 import pytest
 
-from pipelines.cases.reader import CASES_DIR, load_case
+from pipelines.cases.reader import CASES_DIR
 from pipelines.cli import main
 from pipelines.cases.stress import read_stress_case
+
+from tests.support.shipped import shipped_table
 from pipelines.models.stress.model import check_resources, estimate_resources, mesh_scene
 from pipelines.models.stress.run import build_scene, plausibility_warnings
 from tca.errors import InputError
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 
 
 def stress_case(**mesh):
-    t = load_case(CASES_DIR / "stress_pair_small.toml")
-    t.data["mesh"] = {**t.data.get("mesh", {}), **mesh}
-    return read_stress_case(t)
+    return read_stress_case(shipped_table("stress_pair_small", {f"mesh.{k}": v for k, v in mesh.items()}))
 
 
 def test_force_writes_into_a_non_empty_folder_and_keeps_other_files(tmp_path, capsys):

@@ -16,7 +16,7 @@ from pipelines.cli import main
 from pipelines.cli.sweep import build_grid
 from pipelines.render.images import image_is_blank
 
-CASES = Path(__file__).resolve().parents[2] / "pipelines" / "cases"
+CASES = Path(__file__).resolve().parents[3] / "pipelines" / "cases"
 SWEEP = """
 task = "stress"
 base = "stress_pair_small.toml"
@@ -75,7 +75,7 @@ def test_grid_columns_and_plots(swept):
 
 def test_sweep_report_html_renders(swept, tmp_path):
     """report.html of the sweep: self-contained (three plots embedded, a row per point) and not blank in Chromium."""
-    from tests.pipelines.html_check import embedded_images, screenshot, self_contained
+    from tests.pipelines.report.html_check import embedded_images, screenshot, self_contained
 
     _, out, rows = swept
     text = (out / "report.html").read_text()

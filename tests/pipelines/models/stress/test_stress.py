@@ -15,9 +15,11 @@ import meshio
 import numpy as np
 import pytest
 
-from pipelines.cases.reader import CASES_DIR, load_case
+from pipelines.cases.reader import CASES_DIR
 from pipelines.cli import main
 from pipelines.cases.stress import read_stress_case
+
+from tests.support.shipped import shipped_data, shipped_table, write_case
 from pipelines.models.stress.run import run_stress
 from tca.errors import InputError
 from tca.pair.analysis import run_pair_tca
@@ -30,40 +32,8 @@ EXTRA_KEYS = ("contact_area_mm2", "max_fillet_stress_mpa", "max_fillet_von_mises
               "tca_s", "mesh_s", "results_s", "total_s", "stress_recovery", "files")
 
 
-def table(name: str, **over):
-    """A shipped case as a strict Table with keys overridden ('mesh.refine' -> [mesh] refine; None deletes)."""
-    t = load_case(CASES_DIR / f"{name}.toml")
-    for key, value in over.items():
-        *path, last = key.split(".")
-        d = t.data
-        for p in path:
-            d = d.setdefault(p, {})
-        if value is None:
-            d.pop(last, None)
-        else:
-            d[last] = value
-    return t
-
-
 def case(name: str, **over):
-    return read_stress_case(table(name, **over))
-
-
-def _toml(d: dict, prefix: str = "") -> str:
-    """A minimal TOML writer for case tables (scalars and nested tables)."""
-    def val(v):
-        return json.dumps(v) if isinstance(v, (str, bool)) else repr(v)
-    lines = [f"{k} = {val(v)}" for k, v in d.items() if not isinstance(v, dict)]
-    for k, v in d.items():
-        if isinstance(v, dict):
-            lines += ["", f"[{prefix}{k}]", _toml(v, f"{prefix}{k}.")]
-    return "\n".join(lines)
-
-
-def write_case(tmp_path: Path, name: str, **over) -> Path:
-    p = tmp_path / f"{name}.toml"
-    p.write_text(_toml(table(name, **over).data) + "\n")
-    return p
+    return read_stress_case(shipped_table(name, over))
 
 
 def shares_sum_to_one(summary):
@@ -273,9 +243,9 @@ BAD = [
 @pytest.mark.parametrize("over, field", BAD)
 def test_bad_input_names_the_field(over, field, tmp_path):
     with pytest.raises(InputError) as e:
-        read_stress_case(table("stress_pair_small", **over))
+        read_stress_case(shipped_table("stress_pair_small", over))
     assert e.value.field == field
-    path = write_case(tmp_path, "stress_pair_small", **over)
+    path = write_case(tmp_path, "stress_pair_small", shipped_data("stress_pair_small", over))
     out = tmp_path / "out"
     assert main(["stress", str(path), "--out", str(out)]) == 2
     assert not out.exists()
@@ -287,10 +257,10 @@ def test_position_out_of_range_fails_after_the_tca_and_writes_nothing(tmp_path):
     with pytest.raises(InputError) as e:
         run_stress(c, tmp_path / "lib")
     assert e.value.field == "position" and "[-21, 20]" in str(e.value)
-    path = write_case(tmp_path, "stress_pair_small", position=21)
+    path = write_case(tmp_path, "stress_pair_small", shipped_data("stress_pair_small", position=21))
     out = tmp_path / "out"
     r = subprocess.run([sys.executable, "-m", "pipelines.cli", "stress", str(path), "--out", str(out)],
-                       capture_output=True, text=True, cwd=Path(__file__).resolve().parents[2], timeout=300)
+                       capture_output=True, text=True, cwd=Path(__file__).resolve().parents[4], timeout=300)
     assert r.returncode == 2, r.stderr
     assert "position = 21 is invalid" in r.stderr
     assert not out.exists() and not any(p.name.startswith(".out.tmp") for p in tmp_path.iterdir())
@@ -298,7 +268,7 @@ def test_position_out_of_range_fails_after_the_tca_and_writes_nothing(tmp_path):
 
 def test_twin_case_rejects_pair_keys():
     with pytest.raises(InputError) as e:
-        read_stress_case(table("stress_part1_new", driver="sun"))
+        read_stress_case(shipped_table("stress_part1_new", driver="sun"))
     assert e.value.field == "driver"
 
 

@@ -4,7 +4,7 @@ import csv
 import json
 
 from pipelines.cli import main
-from tests.pipelines.test_cmd_tca import FAST_PAIR
+from tests.pipelines.cli.test_tca import FAST_PAIR
 
 SWEEP = """
 task = "tca"

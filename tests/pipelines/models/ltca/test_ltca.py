@@ -20,6 +20,8 @@ from pipelines.cases.ltca import read_ltca_case
 from pipelines.models.ltca.options import LTCAOptions
 from pipelines.models.ltca.contact import _active_set
 from pipelines.models.ltca.run import TARGETS, build_model, fe_check, positions, solve_positions
+
+from tests.support.shipped import shipped_table
 from tca.errors import InputError
 
 CASE = "pipelines/cases/ltca_pair_small.toml"
@@ -88,10 +90,7 @@ def test_active_set_two_springs_closed_form():
 
 # ---------------------------------------------------------------------------------------------- input
 def _case(**ltca):
-    t = load_case(CASE)
-    d = copy.deepcopy(t.data)
-    d["ltca"] = {**d.get("ltca", {}), **ltca}
-    return Table(d, "")
+    return shipped_table(CASE, {f"ltca.{k}": v for k, v in ltca.items()})
 
 
 @pytest.mark.parametrize("key, value", [("positions", 0), ("torques_nm", []), ("torques_nm", [-1.0]),

@@ -17,9 +17,10 @@ import shutil
 import numpy as np
 import pytest
 
-from pipelines.cases.reader import load_case
 from pipelines.cli import main
 from pipelines.calculix.frd import read_dat_totals, read_frd
+
+from tests.support.shipped import shipped_data, write_case
 
 CCX = shutil.which("ccx")
 needs_ccx = pytest.mark.skipif(CCX is None, reason="CalculiX (ccx) not installed: apt-get install calculix-ccx")
@@ -29,30 +30,12 @@ CASE = "pipelines/cases/stress_pair_small.toml"
 
 def _case(tmp_path, name, **over):
     """The shipped small crowned-pair case with C3D8, refine 0.3 and overrides, written as TOML."""
-    data = dict(load_case(CASE).data)
-    data["mesh"] = {"refine": 0.3, "teeth": over.pop("teeth", 1)}
-    data["fe"] = {"element": "C3D8"}
+    o = {"mesh": {"refine": 0.3, "teeth": over.pop("teeth", 1)}, "fe": {"element": "C3D8"}}
     if over.pop("spur", False):
-        data["gears"] = {k: {**v, "helix_deg": 0.0} for k, v in data["gears"].items()}
-        data["misalignment"] = {"d_gamma_arcmin": 0.0}
-        data["title"] = "spur sun driving a lead-crowned planet, aligned"
-    data.update(over)
-    lines = []
-
-    def emit(prefix, d):
-        scal = {k: v for k, v in d.items() if not isinstance(v, dict)}
-        if prefix:
-            lines.append(f"[{prefix}]")
-        for k, v in scal.items():
-            lines.append(f"{k} = {json.dumps(v)}")
-        for k, v in d.items():
-            if isinstance(v, dict):
-                emit(f"{prefix}.{k}" if prefix else k, v)
-
-    emit("", data)
-    path = tmp_path / f"{name}.toml"
-    path.write_text("\n".join(lines) + "\n")
-    return path
+        data = shipped_data(CASE)
+        o.update({f"gears.{k}.helix_deg": 0.0 for k in data["gears"]})
+        o.update({"misalignment": {"d_gamma_arcmin": 0.0}, "title": "spur sun driving a lead-crowned planet, aligned"})
+    return write_case(tmp_path, name, shipped_data(CASE, {**o, **over}))
 
 
 @pytest.fixture(scope="module")

@@ -11,7 +11,7 @@ from pipelines.render.html import image, page, table
 from pipelines.render.images import image_is_blank, to_pyvista
 from pipelines.render.maps import Curve, plot_flank_pressure, plot_root_stress, plot_section, quads_to_triangles
 from pipelines.render.views import Mark, clip_range, deformation_scale, render_deformed, render_teeth
-from tests.pipelines.test_images import box_mesh
+from tests.pipelines.render.test_images import box_mesh
 
 
 def test_importing_the_renderers_changes_no_global_state():

@@ -9,7 +9,7 @@ import pytest
 
 from pipelines.cli import main
 
-CASES = Path(__file__).resolve().parents[2] / "pipelines" / "cases"
+CASES = Path(__file__).resolve().parents[3] / "pipelines" / "cases"
 
 
 def _short(text: str) -> str:

@@ -18,7 +18,7 @@ import pytest
 from pipelines.cli import main
 from pipelines.render.images import image_is_blank
 
-CASES = Path(__file__).resolve().parents[2] / "pipelines" / "cases"
+CASES = Path(__file__).resolve().parents[3] / "pipelines" / "cases"
 PAIR = CASES / "stress_pair_small.toml"
 NEW = CASES / "stress_part1_new.toml"
 CONV = CASES / "stress_part1_conventional.toml"
@@ -165,7 +165,7 @@ def test_compare_images(comparison):
 
 def test_compare_report_html_side_by_side(comparison, tmp_path):
     """compare's report.html: both designs' pictures embedded side by side; renders in Chromium, not blank."""
-    from tests.pipelines.html_check import embedded_images, screenshot, self_contained
+    from tests.pipelines.report.html_check import embedded_images, screenshot, self_contained
 
     text = (comparison / "report.html").read_text()
     assert self_contained(text) == []
@@ -182,7 +182,7 @@ PICTURE_KINDS = ("teeth", "deformed", "flank", "section", "root")
 def test_run_report_html_renders_with_its_pictures(pair_run, tmp_path):
     """report.html is one self-contained file (every image embedded, the case file included) and Chromium
     renders it with its pictures (not blank, stress maps in colour)."""
-    from tests.pipelines.html_check import coloured_share, embedded_images, screenshot, self_contained
+    from tests.pipelines.report.html_check import coloured_share, embedded_images, screenshot, self_contained
 
     out, s = pair_run
     for kind in PICTURE_KINDS:
