@@ -3,14 +3,14 @@
 from __future__ import annotations
 
 from tca.errors import InputError
-from tca.planetary.train import PlanetaryTrain, ShaftErrors
+from tca.planetary.train import DoubleHelicalTrain, ShaftErrors
 
 from pipelines.cases.reader import ARCMIN, read_gears
 from pipelines.cases.schema import Table
 
 __all__ = ["read_train", "read_installment"]
 
-def read_train(case: Table) -> PlanetaryTrain:
+def read_train(case: Table) -> DoubleHelicalTrain:
     """Train from the case: gears sun, planet, ring; ``planets``; ``member_gap_mm``."""
     gears = read_gears(case)
     for name in ("sun", "planet", "ring"):
@@ -25,7 +25,7 @@ def read_train(case: Table) -> PlanetaryTrain:
                              "analysed by pair cases and by isostatic cases, kind = 'isostatic')")
     n = case.get("planets", int, lo=1, hi=20)
     gap = case.get("member_gap_mm", float, lo=0.0, hi=1000.0)
-    return PlanetaryTrain(gears["sun"], gears["planet"], gears["ring"], n, gap)
+    return DoubleHelicalTrain(gears["sun"], gears["planet"], gears["ring"], n, gap)
 
 
 def _floats(t: Table, key: str, n: int, lo: float, hi: float) -> list[float]:

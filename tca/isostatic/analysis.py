@@ -47,7 +47,7 @@ from tca.isostatic.subtrain import (BODY_CARRIER, BODY_RING, BODY_SUN, JT_CENTRE
                              mate_tooth, poses, subtrain_eval)
 from tca.isostatic.result import ARCSEC, IsostaticResult, dominant_period, fit_circle  # noqa: F401  (re-exported)
 from tca.isostatic.switching import switch_pairs
-from tca.isostatic.train import PlanetaryTrain
+from tca.isostatic.train import IsostaticTrain
 from tca.numerics.newton import newton
 
 _BODY = {"sun": BODY_SUN, "carrier": BODY_CARRIER, "ring": BODY_RING}
@@ -80,7 +80,7 @@ class IsostaticOptions:
                 raise InputError(f"solver.{name}", v, "an integer in [1, 200]")
 
 
-def phi1_grid(train: PlanetaryTrain, positions: int, *, sun_revolutions: float | None = None,
+def phi1_grid(train: IsostaticTrain, positions: int, *, sun_revolutions: float | None = None,
               carrier_revolutions: float | None = None, planet_revolutions: float | None = None,
               start: float = 0.0) -> np.ndarray:
     """`positions` equally spaced sun angles over a span given in sun, carrier or planet (relative) turns [rad]."""
@@ -98,7 +98,7 @@ def phi1_grid(train: PlanetaryTrain, positions: int, *, sun_revolutions: float |
     return start + 2 * math.pi * sun * np.arange(positions) / positions
 
 
-def _check_mobility(train: PlanetaryTrain) -> bool:
+def _check_mobility(train: IsostaticTrain) -> bool:
     """Raise for set-ups that cannot be simulated; True when the train is rigid and hyperstatic."""
     d = train.dof
     free = train.constraints.free_centres
@@ -126,7 +126,7 @@ def _where_pos(phi1, pos, n):
     return lambda j: f"phi1 = {math.degrees(phi1[pos[j]]):.6f} deg (position {pos[j] + 1} of {n})"
 
 
-def _nominal(train: PlanetaryTrain, fl: TrainFlanks, m: Members):
+def _nominal(train: IsostaticTrain, fl: TrainFlanks, m: Members):
     """Tooth indices and guesses x = (u1, u2s, u2r, u3, phi2, phic) from the nominal motion."""
     N1, N2 = train.sun.teeth, train.planet.teeth
     phc = train.ratio * m.phi1
@@ -241,7 +241,7 @@ def _solve_direct(train, fl, m, x, E, free, opts, wpos):
 ROUNDING_FACTOR = 16.0  # residual terms summed in Eq. (3.18), each rounded to eps |angle| R
 
 
-def scaled_tolerances(train: PlanetaryTrain, phi1: np.ndarray, options: IsostaticOptions) -> IsostaticOptions:
+def scaled_tolerances(train: IsostaticTrain, phi1: np.ndarray, options: IsostaticOptions) -> IsostaticOptions:
     r"""Newton targets no finer than double precision can resolve at the angles reached [mm].
 
     Positions are :math:`R(\phi)\,r` with angles that grow without bound over a long run; rounding
@@ -260,7 +260,7 @@ def scaled_tolerances(train: PlanetaryTrain, phi1: np.ndarray, options: Isostati
     return dataclasses.replace(options, tol=max(options.tol, floor), outer_tol=max(options.outer_tol, 10 * floor))
 
 
-def run_isostatic_tca(train: PlanetaryTrain, phi1, options: IsostaticOptions = IsostaticOptions()) -> IsostaticResult:
+def run_isostatic_tca(train: IsostaticTrain, phi1, options: IsostaticOptions = IsostaticOptions()) -> IsostaticResult:
     """Configuration of the train (centres, carrier, planets, contacting teeth) at the sun angles phi1 [rad]."""
     t0 = time.perf_counter()
     rigid = _check_mobility(train)

@@ -34,7 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from tca.isostatic.flanks import REFLECT, PlanarFlank, apply, cross2, nearest_tooth, perp, rot2
-from tca.isostatic.train import PlanetaryTrain
+from tca.isostatic.train import IsostaticTrain
 from tca.numerics.newton import newton
 
 __all__ = ["TrainFlanks", "Members", "Poses", "poses", "subtrain_eval", "backlash_solve", "line_crossing",
@@ -58,7 +58,7 @@ class TrainFlanks:
     ring: PlanarFlank
 
     @classmethod
-    def of(cls, train: PlanetaryTrain, z0: float = 0.0) -> "TrainFlanks":
+    def of(cls, train: IsostaticTrain, z0: float = 0.0) -> "TrainFlanks":
         key = ("flanks", z0)
         if key not in train._cache:
             p = train.planet
@@ -98,7 +98,7 @@ class Poses:
     a: np.ndarray  # planet frame angle phi_2 + pi / N_2 [rad]
 
 
-def poses(train: PlanetaryTrain, fl: TrainFlanks, m: Members, phi2, phic) -> Poses:
+def poses(train: IsostaticTrain, fl: TrainFlanks, m: Members, phi2, phic) -> Poses:
     """Body maps for planet rotations phi2 and carrier angles phic (Eqs. 3.7, 3.12-3.13, 3.16)."""
     As = rot2(m.phi1)
     cs = m.T[:, BODY_SUN] + apply(As, fl.sun.runout)
@@ -114,7 +114,7 @@ def poses(train: PlanetaryTrain, fl: TrainFlanks, m: Members, phi2, phic) -> Pos
     return Poses(As, cs, Ap, cp, Op, Tc, Ar, cr, q, a)
 
 
-def subtrain_eval(train: PlanetaryTrain, fl: TrainFlanks, m: Members, x: np.ndarray, full: bool = False):
+def subtrain_eval(train: IsostaticTrain, fl: TrainFlanks, m: Members, x: np.ndarray, full: bool = False):
     """Residuals F (M, 6) and Jacobian J (M, 6, 6) of Eq. (3.18) (planar); dF/dT is :data:`JT_CENTRES`.
 
     With ``full``, also returns the poses and the world contact data of both meshes.
@@ -209,7 +209,7 @@ def backlash_solve(fa: PlanarFlank, Aa, ca, ka, fb: PlanarFlank, Ab, cb, kb, ua0
     return ua, ub, s, ok, margin
 
 
-def body_angle_map(train: PlanetaryTrain, P: Poses, body: str):
+def body_angle_map(train: IsostaticTrain, P: Poses, body: str):
     """(c0, sign): a body maps local polar angle t to world angle c0 + sign t about its centre."""
     if body == "sun":
         return np.arctan2(P.As[:, 1, 0], P.As[:, 0, 0]), 1
@@ -218,7 +218,7 @@ def body_angle_map(train: PlanetaryTrain, P: Poses, body: str):
     return np.full(len(P.q), math.pi - train.ring_phase), -1
 
 
-def mate_tooth(train: PlanetaryTrain, flank: PlanarFlank, P: Poses, body: str, centre, target_point):
+def mate_tooth(train: IsostaticTrain, flank: PlanarFlank, P: Poses, body: str, centre, target_point):
     """Tooth of `body` whose flank's pitch point is nearest the world point `target_point`."""
     c0, sg = body_angle_map(train, P, body)
     d = target_point - centre

@@ -40,7 +40,7 @@ from tca.isostatic.dof import DOFCount, TrainConstraints, count_dof
 from tca.errors import GeometryError, InputError
 from tca.geometry.gear import Gear
 
-__all__ = ["PlanetPlacement", "PlanetaryTrain"]
+__all__ = ["PlanetPlacement", "IsostaticTrain"]
 
 
 @dataclass(frozen=True)
@@ -74,7 +74,7 @@ def _vec2(v, name):
 
 
 @dataclass(frozen=True, eq=False)
-class PlanetaryTrain:
+class IsostaticTrain:
     """Sun, N_p planets (equal teeth; each may carry its own run-out) and ring, with floating choices and errors."""
 
     sun: Gear
@@ -199,8 +199,8 @@ class PlanetaryTrain:
         """Planet centres in the carrier frame (Eq. 3.12), (N_p, 2) [mm]."""
         return np.array([[self.r_c + p.radial, p.tangential] for p in self.placements])
 
-    def with_(self, **kw) -> "PlanetaryTrain":
+    def with_(self, **kw) -> "IsostaticTrain":
         """Copy with some fields replaced."""
         d = {f.name: getattr(self, f.name) for f in fields(self) if f.init}
         d.update(kw)
-        return PlanetaryTrain(**d)
+        return IsostaticTrain(**d)
