@@ -12,7 +12,8 @@ from tca.geometry.modifications.crowning import DiskPlunge
 from tca.contact.ellipse import contact_ellipse
 from tca.geometry.modifications.end_relief import EndRelief, RelievedSurface
 from tca.errors import ConvergenceError, GearfeError, GeometryError, InputError
-from tca.geometry.gear import FlankArea, Gear, TipRelief
+from tca.geometry.gear import FlankArea, Gear
+from tca.geometry.modifications.tip_relief import TipRelief
 from tca.rating.root_stress import RootFactors, root_factors, sigma_f0
 from tca.numerics.newton import NewtonResult, newton
 from tca.pair.gear_pair import GearPair, Misalignment

@@ -14,7 +14,8 @@ import pytest
 from pipelines.cases.reader import read_gear
 from pipelines.cases.schema import Table
 from tca.errors import InputError
-from tca.geometry.gear import Gear, TipRelief
+from tca.geometry.gear import Gear
+from tca.geometry.modifications.tip_relief import TipRelief
 from tca.pair.gear_pair import GearPair
 from tca.pair.analysis import TCAOptions, run_pair_tca
 
