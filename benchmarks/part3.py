@@ -200,7 +200,7 @@ def main(argv=None) -> int:
         L.append(f"| {label} | {dc.dof} | {dc.constraints} | {dc.isostatic_planets} | {dc.first_order_rank} | {dc.state} |")
     L += ["", "Case 3 is isostatic by the count of section 3.2 but singular: any member's translation changes the "
           "planets' loop backlash as a first harmonic of their angles, so two floating axes duplicate each other "
-          "(the Jacobian of Eq. 3.22 has two zero singular values, tests/tca/test_dof.py). The simulation refuses it.", ""]
+          "(the Jacobian of Eq. 3.22 has two zero singular values, tests/tca/isostatic/test_dof.py). The simulation refuses it.", ""]
     (out / "report.md").write_text("\n".join(L) + "\n")
     print("\n".join(L))
     return 0

@@ -23,7 +23,7 @@ traces. A parabolic (profile-crowned, Eq. 1.5 of the report) rack bends its flan
 to the bent flank, sits :math:`\Delta\eta` [mm] nearer the gear tooth's centre line than on the straight
 rack (:math:`\Delta\eta = 0` for a straight rack): ISO's E takes it as it takes a protuberance's residual
 undercut (:math:`s_{pr}/\cos\alpha_n`); each flank uses its own parabola and the chord is the sum of the two
-half-chords. The trochoid is then exact (tests/tca/test_iso6336.py: 1e-5 against the generated fillet).
+half-chords. The trochoid is then exact (tests/tca/rating/test_root_stress.py: 1e-5 against the generated fillet).
 
 Load at the outer point of single pair tooth contact of the virtual spur gear (method B): :math:`d_n = m_n z_n`, :math:`d_{bn} = d_n\cos\alpha_n`,
 :math:`d_{an} = d_n + d_a - d`, :math:`\varepsilon_{\alpha n} = \varepsilon_\alpha/\cos^2\beta_b`,
@@ -43,7 +43,7 @@ rack, whose root rounding ρ_fP2 and dedendum h_fP2 are those of the tool that c
 generating rack: h_fP2 = tool_addendum m_n, ρ_fP2 = tool_tip_radius m_n). The equations below are that rack's
 geometry, derived here; (I1), (I3) and the load angle of (I4) equal DIN 3990-11:1989 Annex D, Eqs. D.5.05,
 D.5.11, D.5.15 for internal gears (checked against an open-source implementation of that annex to 1e-9:
-tests/tca/test_iso6336.py; the text of ISO 6336-3's clause was not available to this project). On a straight-flanked rack the 30°
+tests/tca/rating/test_root_stress.py; the text of ISO 6336-3's clause was not available to this project). On a straight-flanked rack the 30°
 tangent lies on the root rounding, ϑ = π/6 exactly, and no fixed point is needed. With the virtual internal
 gear's diameters as magnitudes (:math:`d_{fn} = d_n + d_f - d` its root, :math:`d_{an} = d_n + d_a - d` its tip,
 :math:`d_a < d < d_f`), the outer point of single contact lies one base pitch less than the path length from
@@ -70,7 +70,7 @@ tangent point :math:`\rho_{fP2}\cos 30°` nearer); (I3) is the height over the c
 crosses the centre line, the flank's half-thickness at the load point being the bracket. DIN 3990-11 (D.5.16) takes
 :math:`\rho_{F2} = \rho_{fP2}/2`; (I4) keeps the substitute rack's own rounding, the
 limit of the generated fillet (the rack-generated ring's fillet radius tends to ρ_fP2 as 1/z:
-tests/tca/test_iso6336.py), and DIN's halved radius would put q_s = s_Fn / (2 ρ_F) near 9.6, outside the
+tests/tca/rating/test_root_stress.py), and DIN's halved radius would put q_s = s_Fn / (2 ρ_F) near 9.6, outside the
 range 1 <= q_s < 8 of Y_S (F2) for the standard rack. The internal gear's own tooth is thicker at the root than the substitute rack's
 (the flanks of an internal tooth diverge toward the root faster than a rack's), so (I1)-(I3) are conservative
 for rings of few teeth.

@@ -21,7 +21,7 @@ from tca.pair.relief import RIDGE_Z_MAX, RIDGE_Z_MIN
 from tca.pair.result import ContactKind
 from tca.pair.analysis import TCAOptions, run_pair_tca
 from tca.units import ARCMIN, ARCSEC
-from tests.tca.test_surfaces import involute_angle
+from tests.tca.geometry.test_surfaces import involute_angle
 
 d = math.radians
 SPUR = Gear("p", 19, 4.5, d(20), 14.0)
