@@ -187,7 +187,7 @@ class Gear:
                                  f"(d = {2 * ar.r_tip:.4f} mm): the relief must leave a working flank and start below the tip")
             return RackCutter(self.module, self.pressure_angle, self.tool_addendum, self.tool_tip_radius,
                               self.parabola_pos, self.parabola_neg, self.parabola_apex, tr.amount,
-                              bare._u_at_radius(1, tr.start_radius), ar.u_tip, tr.power)
+                              bare.u_at_radius(1, tr.start_radius), ar.u_tip, tr.power)
         except InputError as e:
             raise InputError(f"{self.name}.{e.field}", e.value, e.valid) from None
 
@@ -203,7 +203,9 @@ class Gear:
         return self._cache[key]
 
     # ------------------------------------------------------------------ surfaces
-    def _v_range(self):
+    @property
+    def v_range(self) -> tuple[float, float]:
+        """Axial parameter range of the tooth surfaces [mm]: the face width and a margin of B/4 + 2 mm each side."""
         half = 0.5 * self.face_width
         margin = 0.25 * self.face_width + 2.0
         return (-half - margin, half + margin)
@@ -214,7 +216,7 @@ class Gear:
         if key not in self._cache:
             seg = self.segments(side)[piece]
             self._cache[key] = HelicoidSurface(seg, self.r_p, self.kappa, 1.0 / math.cos(self.beta_ref), side,
-                                               self.k_screw, self._v_range())
+                                               self.k_screw, self.v_range)
         return self._cache[key]
 
     def surface(self, side: int, piece: str = "flank") -> ToothSurface:
@@ -251,7 +253,8 @@ class Gear:
         return self._cache[key]
 
     # ------------------------------------------------------------------ working area
-    def _profile(self, side: int, u):
+    def profile(self, side: int, u):
+        """Transverse profile g and its tangent g' = dg/du (..., 2) of flank `side` at z = 0, from the rack's flank [mm]."""
         g, g1, _, _ = envelope_profile(self.segments(side)["flank"], u, self.r_p, self.kappa,
                                        1.0 / math.cos(self.beta_ref))
         return g, g1
@@ -262,17 +265,18 @@ class Gear:
         if key not in self._cache:
             seg = self.segments(side)["flank"]
             u_form = seg.t0
-            g0, _ = self._profile(side, np.array(u_form))
+            g0, _ = self.profile(side, np.array(u_form))
             r_form = float(np.linalg.norm(g0))
-            u_tip = self._u_at_radius(side, self.r_tip)
+            u_tip = self.u_at_radius(side, self.r_tip)
             h = 0.5 * self.face_width
             self._cache[key] = FlankArea(u_form, u_tip, -h, h, r_form, self.r_tip)
         return self._cache[key]
 
-    def _u_at_radius(self, side: int, radius: float) -> float:
+    def u_at_radius(self, side: int, radius: float) -> float:
+        """Rack flank parameter u [mm] where flank `side` (z = 0) reaches `radius` [mm] (bisection to rounding)."""
         seg = self.segments(side)["flank"]
         us = np.linspace(seg.t0, seg.t1, 401)
-        r = np.linalg.norm(self._profile(side, us)[0], axis=-1)
+        r = np.linalg.norm(self.profile(side, us)[0], axis=-1)
         s = self.kappa * (r - radius)
         idx = np.flatnonzero(np.diff(np.sign(s)) > 0)
         if len(idx) == 0 and self.internal and radius < self.r_b:
@@ -286,7 +290,7 @@ class Gear:
         a, b = us[idx[-1]], us[idx[-1] + 1]
         for _ in range(80):
             c = 0.5 * (a + b)
-            rc = float(np.linalg.norm(self._profile(side, np.array(c))[0]))
+            rc = float(np.linalg.norm(self.profile(side, np.array(c))[0]))
             if self.kappa * (rc - radius) > 0:
                 b = c
             else:
@@ -327,7 +331,7 @@ class Gear:
                     f"fillet at radius {ar.r_form:.4f} mm",
                 )
             us = np.linspace(ar.u_form, ar.u_tip, 400)
-            g, g1 = self._profile(side, us)
+            g, g1 = self.profile(side, us)
             radial = self.kappa * np.einsum("...i,...i", g, g1) / np.linalg.norm(g, axis=-1)
             bad = radial <= 0.0
             if bad.any():
@@ -346,7 +350,7 @@ class Gear:
                         f"working area (tip {ar.r_tip:.4f} mm, fillet start {ar.r_form:.4f} mm); the tip circle must "
                         f"stay outside the base circle r_b = {self.r_b:.4f} mm")
                 raise GeometryError(self.name, cause, detail)
-            gt, _ = self._profile(side, np.array(ar.u_tip))
+            gt, _ = self.profile(side, np.array(ar.u_tip))
             angles[side] = math.atan2(gt[1], gt[0])  # half-thickness angle (profile unmirrored)
         top_land = self.r_tip * (angles[1] + angles[-1])
         if top_land <= 0:
@@ -361,6 +365,6 @@ class Gear:
         """Tooth thickness on the tip circle [mm]."""
         a = {}
         for side in (1, -1):
-            gt, _ = self._profile(side, np.array(self.area(side).u_tip))
+            gt, _ = self.profile(side, np.array(self.area(side).u_tip))
             a[side] = math.atan2(gt[1], gt[0])
         return self.r_tip * (a[1] + a[-1])

@@ -349,8 +349,8 @@ def path_of_contact(pair: GearPair) -> PathOfContact:
     t_c = rb1 * math.tan(al)
     # the reference tooth's flank at the operating pitch radius, z = 0, in its gear frame
     r_w = rb1 / c
-    u = g1._u_at_radius(pair.side1, r_w)
-    gp = g1._profile(pair.side1, np.array(u))[0]
+    u = g1.u_at_radius(pair.side1, r_w)
+    gp = g1.profile(pair.side1, np.array(u))[0]
     th = math.atan2(float(gp[1]), float(gp[0]))
     m1, _ = pair.mounts()
     cw = m1.R0.T @ (np.array([r_w, 0.0, 0.0]) - m1.origin)
