@@ -16,9 +16,9 @@ from tca.contact.systems import PlacedFlank, corner_system, edge_edge_system, ed
 from tca.errors import ConvergenceError
 from tca.numerics.newton import NewtonResult, newton
 from tca.pair.gear_pair import GearPair
-from tca.pair.result import ContactKind, ReferencePairSolution, TCAOptions, _flanks
+from tca.pair.result import ContactKind, ReferencePairSolution, TCAOptions
 
-__all__ = ["bounded_pass", "boundary_curve", "onto_other_flank"]
+__all__ = ["bounded_pass", "boundary_curve", "onto_other_flank", "tip_points"]
 
 
 def bounded_pass(pair: GearPair, ref: "ReferencePairSolution", sel: np.ndarray, opts: TCAOptions) -> None:
@@ -26,7 +26,7 @@ def bounded_pass(pair: GearPair, ref: "ReferencePairSolution", sel: np.ndarray, 
     sel = np.asarray(sel, int)
     if not len(sel):
         return
-    f1, f2 = _flanks(pair)
+    f1, f2 = pair.flanks()
     ratio = pair.ratio
     phis, X, js = ref.phi1, ref.x, ref.j
     tan_ok = ref.tangency
@@ -69,9 +69,9 @@ def _boundary_param(flank: PlacedFlank, b: int):
     """Range (t0, t1) of the parameter along boundary b, and a map t -> (u, v) on it."""
     ar = flank.gear.area(flank.side)
     if b == 1:  # tip: parameter is z
-        return (ar.z_min, ar.z_max), lambda t: _tip_points(flank, np.full(np.shape(t), ar.u_tip), t)
+        return (ar.z_min, ar.z_max), lambda t: tip_points(flank, np.full(np.shape(t), ar.u_tip), t)
     zb = ar.z_max if b == 2 else ar.z_min
-    u_end = _tip_points(flank, np.array([ar.u_tip]), np.array([zb]))[0, 0]
+    u_end = tip_points(flank, np.array([ar.u_tip]), np.array([zb]))[0, 0]
     return (ar.u_form, u_end), lambda t: np.stack([np.asarray(t, float), np.full(np.shape(t), zb)], -1)
 
 
@@ -252,7 +252,7 @@ def _bounded_contacts(pair, f1, f2, phis, sel, phi2_guess, opts, samples: int = 
     return out_x, out_kind, out_where, out_res
 
 
-def _tip_points(fi, u, v):
+def tip_points(fi, u, v):
     """(u, v) on the tip boundary of flank fi at axial positions v (vectorized Newton in u)."""
     from tca.contact.systems import boundary_derivs
 

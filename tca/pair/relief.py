@@ -37,8 +37,8 @@ import numpy as np
 from tca.contact.systems import edge_edge_system, edge_system, tangency_system
 from tca.numerics.newton import newton
 from tca.pair.gear_pair import GearPair
-from tca.pair.bounded import _tip_points, onto_other_flank
-from tca.pair.result import ContactKind, ReferencePairSolution, TCAOptions, _flanks
+from tca.pair.bounded import onto_other_flank, tip_points
+from tca.pair.result import ContactKind, ReferencePairSolution, TCAOptions
 
 __all__ = ["relief_pass", "RIDGE_Z_MAX", "RIDGE_Z_MIN"]
 
@@ -81,7 +81,7 @@ def _candidates(f1, f2, fl: int, phi1, ph2g, opts, levels: int, samples: int):
     lev = _levels(fi, levels)
     zl = np.array([z for z, _ in lev])
     code_l = np.array([c for _, c in lev])
-    u_tip = _tip_points(fi, np.full(len(zl), ar.u_tip), zl)[:, 0]
+    u_tip = tip_points(fi, np.full(len(zl), ar.u_tip), zl)[:, 0]
     t = np.linspace(0.0, 1.0, samples)
     U = ar.u_form + (u_tip - ar.u_form)[:, None] * t  # (levels, samples)
     uv = np.broadcast_to(np.stack([U, np.broadcast_to(zl[:, None], U.shape)], -1).reshape(1, -1, 2), (n, U.size, 2))
@@ -110,7 +110,7 @@ def relief_pass(pair: GearPair, ref: ReferencePairSolution, opts: TCAOptions, le
     """Replace the contact of positions where a relieved zone or a ridge touches first (in place).
 
     Returns (positions replaced, of which kept as sampled points: no refinement converged)."""
-    f1, f2 = _flanks(pair)
+    f1, f2 = pair.flanks()
     flanks = (f1, f2)
     relieved = [fl for fl in (1, 2) if flanks[fl - 1].gear.end_relief is not None]
     if not relieved:

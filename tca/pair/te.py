@@ -47,7 +47,6 @@ from typing import NamedTuple
 
 import numpy as np
 
-from tca.contact.systems import PlacedFlank
 from tca.contact.ellipse import contact_ellipse
 from tca.errors import GeometryError, InputError
 from tca.pair.gear_pair import GearPair
@@ -269,8 +268,8 @@ def mesh_contact(result: PairTCAResult, phi: float) -> MeshContact:
     else:
         x, kind = ref.x[i0].copy(), int(ref.kind[i0])
     phi2 = pair.ratio * phi + te
-    m1, m2 = pair.mounts()
-    f1, f2 = PlacedFlank(pair.gear1, pair.side1, m1), PlacedFlank(pair.gear2, pair.side2, m2)
+    f1, f2 = pair.flanks()
+    m1, m2 = f1.mount, f2.mount
     w1, _, _ = f1.world(np.array([x[0]]), np.array([x[1]]), np.array([phi - k * p1]))
     w2, _, _ = f2.world(np.array([x[2]]), np.array([x[3]]), np.array([phi2 - k * p2]))
     _, _, ang, lam = contact_ellipse(w1, w2, 1.0, m1.axis[None, :])
