@@ -65,14 +65,14 @@ def _planetary(t: Table) -> None:
 
 
 def _isostatic(t: Table) -> None:
-    from tca.isostatic.analysis import _check_mobility
+    from tca.isostatic.analysis import check_mobility
 
     from pipelines.cases.isostatic import read_run, read_solver, read_train
 
     train = read_train(t)
     read_run(t, train)
     read_solver(t)
-    _check_mobility(train)
+    check_mobility(train)
 
 
 def _face(t: Table) -> None:

@@ -42,13 +42,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from tca.errors import ConvergenceError, InputError
-from tca.isostatic.flanks import apply, nearest_tooth, rot2
-from tca.isostatic.subtrain import (BODY_CARRIER, BODY_RING, BODY_SUN, JT_CENTRES, Members, TrainFlanks, line_crossing,
+from tca.isostatic.flanks import TrainFlanks, apply, nearest_tooth, rot2
+from tca.isostatic.subtrain import (BODY_CARRIER, BODY_RING, BODY_SUN, JT_CENTRES, Members, line_crossing,
                              mate_tooth, poses, subtrain_eval)
 from tca.isostatic.result import ARCSEC, IsostaticResult, dominant_period, fit_circle  # noqa: F401  (re-exported)
 from tca.isostatic.switching import switch_pairs
 from tca.isostatic.train import IsostaticTrain
 from tca.numerics.newton import newton
+
+__all__ = ["IsostaticOptions", "phi1_grid", "check_mobility", "scaled_tolerances", "ROUNDING_FACTOR",
+           "run_isostatic_tca", "ARCSEC", "IsostaticResult", "dominant_period", "fit_circle"]
 
 _BODY = {"sun": BODY_SUN, "carrier": BODY_CARRIER, "ring": BODY_RING}
 
@@ -98,7 +101,7 @@ def phi1_grid(train: IsostaticTrain, positions: int, *, sun_revolutions: float |
     return start + 2 * math.pi * sun * np.arange(positions) / positions
 
 
-def _check_mobility(train: IsostaticTrain) -> bool:
+def check_mobility(train: IsostaticTrain) -> bool:
     """Raise for set-ups that cannot be simulated; True when the train is rigid and hyperstatic."""
     d = train.dof
     free = train.constraints.free_centres
@@ -263,12 +266,12 @@ def scaled_tolerances(train: IsostaticTrain, phi1: np.ndarray, options: Isostati
 def run_isostatic_tca(train: IsostaticTrain, phi1, options: IsostaticOptions = IsostaticOptions()) -> IsostaticResult:
     """Configuration of the train (centres, carrier, planets, contacting teeth) at the sun angles phi1 [rad]."""
     t0 = time.perf_counter()
-    rigid = _check_mobility(train)
+    rigid = check_mobility(train)
     phi1 = np.asarray(phi1, float).reshape(-1)
     if len(phi1) == 0 or not np.all(np.isfinite(phi1)):
         raise InputError("phi1", phi1[:5].tolist(), "one or more finite sun angles")
     options = scaled_tolerances(train, phi1, options)
-    fl = TrainFlanks.of(train, options.section_z)
+    fl = train.flanks(options.section_z)
     n, Np = len(phi1), train.n_planets
     free = train.constraints.free_centres
     if options.method == "direct" and rigid and Np > 1:

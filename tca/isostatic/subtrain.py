@@ -33,11 +33,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from tca.isostatic.flanks import REFLECT, PlanarFlank, apply, cross2, nearest_tooth, perp, rot2
+from tca.isostatic.flanks import REFLECT, PlanarFlank, TrainFlanks, apply, cross2, nearest_tooth, perp, rot2
 from tca.isostatic.train import IsostaticTrain
 from tca.numerics.newton import newton
 
-__all__ = ["TrainFlanks", "Members", "Poses", "poses", "subtrain_eval", "backlash_solve", "line_crossing",
+__all__ = ["Members", "Poses", "poses", "subtrain_eval", "backlash_solve", "line_crossing",
            "body_angle_map", "mate_tooth", "corner_gap", "JT_CENTRES", "BODY_SUN", "BODY_CARRIER", "BODY_RING"]
 
 BODY_SUN, BODY_CARRIER, BODY_RING = 0, 1, 2
@@ -46,25 +46,6 @@ BODY_SUN, BODY_CARRIER, BODY_RING = 0, 1, 2
 JT_CENTRES = np.zeros((6, 6))
 JT_CENTRES[0:2, 0:2], JT_CENTRES[0:2, 2:4] = np.eye(2), -np.eye(2)
 JT_CENTRES[3:5, 2:4], JT_CENTRES[3:5, 4:6] = np.eye(2), -np.eye(2)
-
-
-@dataclass(frozen=True, eq=False)
-class TrainFlanks:
-    """The four flanks in mesh: sun (+1), planet toward the sun (-1), planet toward the ring (+1), ring (-1)."""
-
-    sun: PlanarFlank
-    planet_s: PlanarFlank
-    planet_r: PlanarFlank
-    ring: PlanarFlank
-
-    @classmethod
-    def of(cls, train: IsostaticTrain, z0: float = 0.0) -> "TrainFlanks":
-        key = ("flanks", z0)
-        if key not in train._cache:
-            p = train.planet
-            train._cache[key] = cls(PlanarFlank(train.sun, 1, z0), PlanarFlank(p, -1, z0), PlanarFlank(p, 1, z0),
-                                    PlanarFlank(train.ring, -1, z0))
-        return train._cache[key]
 
 
 @dataclass(eq=False)

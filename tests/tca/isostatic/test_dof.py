@@ -11,7 +11,7 @@ from tca.isostatic.dof import TrainConstraints, count_dof
 from tca.errors import InputError
 from tca.geometry.gear import Gear
 from tca.isostatic.analysis import run_isostatic_tca
-from tca.isostatic.subtrain import JT_CENTRES, Members, TrainFlanks, subtrain_eval
+from tca.isostatic.subtrain import JT_CENTRES, Members, subtrain_eval
 from tca.isostatic.train import IsostaticTrain
 
 
@@ -80,7 +80,7 @@ def test_case_3_is_isostatic_by_count_but_singular():
     for free, n in ((("sun", "carrier"), 5), (("sun",), 3)):
         tr = IsostaticTrain(sun, (pl,) * n, ring, TrainConstraints(n, sun_axis_free=True,
                                                                   carrier_axis_free="carrier" in free))
-        fl = TrainFlanks.of(tr)
+        fl = tr.flanks()
         # the ideal configuration at phi1 = 0.3 from the (case 2) solver and, for case 3, the rigid one
         ref = run_isostatic_tca(tr.with_(constraints=TrainConstraints(n)) if n == 5 else tr, np.array([0.3]))
         m = Members(np.repeat(ref.phi1, n), tr.theta, tr.pins, np.zeros((n, 2)), ref.teeth.reshape(n, 4),

@@ -85,11 +85,11 @@ def test_corner_gap_measures_penetration_of_a_point_into_the_mate():
     # sun's contact point has gap 0 to the planet flank; turning the planet by +-delta about its axis changes the
     # gap by -+ r_b2 delta along the line of action (1e-9 mm tolerance: Newton foot and round-off; the
     # linearisation error (r_b2 delta)^2 / rho ~ 1e-10 mm for delta = 1e-5 rad).
-    from tca.isostatic.subtrain import Members, TrainFlanks, corner_gap, poses
+    from tca.isostatic.subtrain import Members, corner_gap, poses
 
     tr = IsostaticTrain(SUN, (PLANET,) * 3, RING)
     r = run_isostatic_tca(tr, np.array([0.2]))
-    fl = TrainFlanks.of(tr)
+    fl = tr.flanks()
     m = Members(np.full(3, 0.2), tr.theta, tr.pins, np.zeros((3, 2)), r.teeth.reshape(3, 4), np.zeros((3, 3, 2)))
     gaps = []
     for delta in (-1e-5, 0.0, 1e-5):
