@@ -57,7 +57,7 @@ from tca.contact.ellipse import contact_ellipse
 from tca.errors import ConvergenceError, GeometryError, InputError
 from tca.face.face_gear import FaceGear
 from tca.geometry.gear import Gear
-from tca.numerics.newton import NewtonResult, newton
+from tca.numerics.newton import NewtonOptions, NewtonResult, PreferredPoint, newton
 from tca.numerics.transforms import Mount
 
 __all__ = ["FaceMesh", "FaceMeshResult", "run_face_mesh", "trace_reference_pair", "ARCSEC", "SURFACE", "EDGE"]
@@ -208,7 +208,7 @@ class _Contacts:
             Rp, Rm = R[k:(m + 1) * k].reshape(m, k, -1), R[(m + 1) * k:].reshape(m, k, -1)
             return R[:k], np.moveaxis((Rp - Rm) / (2 * _FD_STEP[:, None, None]), 0, -1)
 
-        r = newton(fun, guess, tol=1e-11, maxiter=40, raise_on_failure=False, max_backtracks=8)
+        r = newton(fun, guess, NewtonOptions(tol=1e-11, maxiter=40, max_backtracks=8), raise_on_failure=False)
         return NewtonResult(r.x, r.residual, r.iterations, r.residual < ACCEPT)
 
     def solve(self, phis, guess, hint=None):
@@ -385,8 +385,8 @@ ACCEPT = 1e-9  # [mm] residual accepted when Newton (target 1e-11 mm) stalls: co
 
 
 def _newton(f1, f2, phis, guess, strict=False):
-    r = newton(tangency_system(f1, f2, phis), guess, tol=1e-11, maxiter=40, raise_on_failure=False,
-               prefer=_prefer(f1), prefer_weights=PREFER_WEIGHTS, max_backtracks=8)
+    r = newton(tangency_system(f1, f2, phis), guess, NewtonOptions(tol=1e-11, maxiter=40, max_backtracks=8),
+               prefer=PreferredPoint(_prefer(f1), PREFER_WEIGHTS), raise_on_failure=False)
     ok = r.residual < ACCEPT
     if strict and not ok.all():
         i = int(np.argmax(np.where(ok, -np.inf, r.residual)))

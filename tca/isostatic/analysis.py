@@ -48,7 +48,7 @@ from tca.isostatic.subtrain import (BODY_CARRIER, BODY_RING, BODY_SUN, JT_CENTRE
 from tca.isostatic.result import ARCSEC, IsostaticResult, dominant_period, fit_circle  # noqa: F401  (re-exported)
 from tca.isostatic.switching import switch_pairs
 from tca.isostatic.train import IsostaticTrain
-from tca.numerics.newton import newton
+from tca.numerics.newton import NewtonOptions, newton
 
 __all__ = ["IsostaticOptions", "phi1_grid", "check_mobility", "scaled_tolerances", "ROUNDING_FACTOR",
            "run_isostatic_tca", "ARCSEC", "IsostaticResult", "dominant_period", "fit_circle"]
@@ -160,7 +160,7 @@ def _inner(train, fl, m: Members, x0, opts, where):
     def fun(x, idx):
         return subtrain_eval(train, fl, m.take(idx), x)
 
-    return newton(fun, x0, tol=opts.tol, maxiter=40, what="subtrain tangency (Eq. 3.18)", where=where)
+    return newton(fun, x0, NewtonOptions(tol=opts.tol, maxiter=40), what="subtrain tangency (Eq. 3.18)", where=where)
 
 
 def _set_free(m: Members, free, E, Np):
@@ -233,8 +233,8 @@ def _solve_direct(train, fl, m, x, E, free, opts, wpos):
             JJ[:, r, nf + 1 + 5 * i:nf + 6 + 5 * i] = J[:, i, :, :5]
         return F.reshape(k, 6 * Np), JJ
 
-    r = newton(fun, X0, tol=opts.tol, maxiter=60, what="train tangency (direct solve of Eqs. 3.18 and 3.22)",
-               where=wpos)
+    r = newton(fun, X0, NewtonOptions(tol=opts.tol, maxiter=60),
+               what="train tangency (direct solve of Eqs. 3.18 and 3.22)", where=wpos)
     X = r.x
     _, x6 = split(X, np.arange(p))
     _set_free(m, free, X[:, :nf], Np)

@@ -35,7 +35,7 @@ import numpy as np
 
 from tca.isostatic.flanks import REFLECT, PlanarFlank, TrainFlanks, apply, cross2, nearest_tooth, perp, rot2
 from tca.isostatic.train import IsostaticTrain
-from tca.numerics.newton import newton
+from tca.numerics.newton import NewtonOptions, newton
 
 __all__ = ["Members", "Poses", "poses", "subtrain_eval", "backlash_solve", "line_crossing",
            "body_angle_map", "mate_tooth", "corner_gap", "JT_CENTRES", "BODY_SUN", "BODY_CARRIER", "BODY_RING"]
@@ -181,7 +181,8 @@ def backlash_solve(fa: PlanarFlank, Aa, ca, ka, fb: PlanarFlank, Ab, cb, kb, ua0
         return F, J
 
     x0 = np.stack([ua0, ub0, np.zeros(len(ua0))], -1)
-    r = newton(fun, x0, tol=tol, maxiter=30, raise_on_failure=False, what="backlash of neighbouring teeth")
+    r = newton(fun, x0, NewtonOptions(tol=tol, maxiter=30), raise_on_failure=False,
+               what="backlash of neighbouring teeth")
     ua, ub, s = r.x.T
     ga = fa.eval(ua)[0]
     gb = fb.eval(ub)[0]

@@ -14,7 +14,7 @@ import numpy as np
 
 from tca.contact.systems import PlacedFlank, corner_system, edge_edge_system, edge_system
 from tca.errors import ConvergenceError
-from tca.numerics.newton import NewtonResult, newton
+from tca.numerics.newton import NewtonOptions, NewtonResult, newton
 from tca.pair.gear_pair import GearPair
 from tca.pair.result import ContactKind, ReferencePairSolution, TCAOptions
 
@@ -94,7 +94,8 @@ def onto_other_flank(f1: PlacedFlank, f2: PlacedFlank, fl: int, uv: np.ndarray, 
     loc = np.einsum("nji,nj->ni", Rf, pw.r - tf)
     u_of_r = u_of_r or _u_of_radius(fo)
     g = np.stack([u_of_r(np.hypot(loc[:, 0], loc[:, 1])), loc[:, 2], ph2], -1)
-    rr = newton(corner_system(f1, f2, ph1, fl, uv), g, tol=tol, maxiter=15, raise_on_failure=False, max_backtracks=6)
+    rr = newton(corner_system(f1, f2, ph1, fl, uv), g, NewtonOptions(tol=tol, maxiter=15, max_backtracks=6),
+                raise_on_failure=False)
     return rr, fo.constraints(fo.surface.evaluate(rr.x[:, 0], rr.x[:, 1]), rr.x[:, 0])
 
 
@@ -198,7 +199,7 @@ def _bounded_contacts(pair, f1, f2, phis, sel, phi2_guess, opts, samples: int = 
                 else:
                     g[:, :2], g[:, 2:4], bb = oth[:, :2], uvi, (b2, b)
                 g[:, 4] = oth[:, 2]
-                ree = newton(edge_edge_system(f1, f2, phis[sel][pi], *bb), g, tol=opts.tol, maxiter=40,
+                ree = newton(edge_edge_system(f1, f2, phis[sel][pi], *bb), g, NewtonOptions(tol=opts.tol, maxiter=40),
                              raise_on_failure=False)
                 xe = ree.x
                 c1 = f1.constraints(f1.surface.evaluate(xe[:, 0], xe[:, 1]), xe[:, 0])
@@ -232,8 +233,8 @@ def _bounded_contacts(pair, f1, f2, phis, sel, phi2_guess, opts, samples: int = 
             cand_res = res3[np.arange(n), best]
             if interior.any():
                 ii = np.flatnonzero(interior)
-                re = newton(edge_system(f1, f2, phis[sel][ii], fl, b), cand_x[ii], tol=opts.tol, maxiter=40,
-                            raise_on_failure=False)
+                re = newton(edge_system(f1, f2, phis[sel][ii], fl, b), cand_x[ii],
+                            NewtonOptions(tol=opts.tol, maxiter=40), raise_on_failure=False)
                 xe = re.x
                 c1 = f1.constraints(f1.surface.evaluate(xe[:, 0], xe[:, 1]), xe[:, 0])
                 c2 = f2.constraints(f2.surface.evaluate(xe[:, 2], xe[:, 3]), xe[:, 2])

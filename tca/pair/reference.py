@@ -15,7 +15,7 @@ from scipy.interpolate import CubicSpline
 
 from tca.contact.systems import PlacedFlank, tangency_system
 from tca.errors import ConvergenceError
-from tca.numerics.newton import newton
+from tca.numerics.newton import NewtonOptions, PreferredPoint, newton
 from tca.pair.gear_pair import GearPair
 from tca.pair.bounded import bounded_pass
 from tca.pair.relief import relief_pass
@@ -51,9 +51,9 @@ def _start(pair: GearPair, f1: PlacedFlank):
     return phi1_0
 
 
-def _solve_one(fun, x0, tol, prefer, maxiter=20):
-    res = newton(fun, x0[None, :], tol=tol, maxiter=maxiter, raise_on_failure=False, prefer=prefer,
-                 prefer_weights=PREFER_WEIGHTS, max_backtracks=8)
+def _solve_one(fun, x0, tol, prefer: PreferredPoint, maxiter=20):
+    res = newton(fun, x0[None, :], NewtonOptions(tol=tol, maxiter=maxiter, max_backtracks=8), prefer=prefer,
+                 raise_on_failure=False)
     return res.x[0], bool(res.converged[0]), float(res.residual[0]), int(res.iterations[0])
 
 
@@ -130,7 +130,7 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
     js = np.arange(-J, J + 1)
     phis = phi1_0 + js * h
     n = len(js)
-    prefer = _centre_preference(f1)
+    prefer = PreferredPoint(_centre_preference(f1), PREFER_WEIGHTS)
     X = np.full((n, 5), np.nan)
     tan_ok = np.zeros(n, bool)
     beyond = np.zeros(n, bool)  # past the point where the pair left its mesh
@@ -170,8 +170,9 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
                 else:
                     coef = np.polyfit(js[known], X[known], deg)
                     guess = np.stack([np.polyval(coef[:, k], js[targets]) for k in range(5)], -1)
-                r = newton(tangency_system(f1, f2, phis[targets]), guess, tol=opts.tol, maxiter=20,
-                           raise_on_failure=False, prefer=prefer, prefer_weights=PREFER_WEIGHTS, max_backtracks=8)
+                r = newton(tangency_system(f1, f2, phis[targets]), guess,
+                           NewtonOptions(tol=opts.tol, maxiter=20, max_backtracks=8), prefer=prefer,
+                           raise_on_failure=False)
                 total_its += int(r.iterations.sum())
                 good = r.converged & in_domain(f1, f2, r.x)
                 for q, i in enumerate(targets):
@@ -217,8 +218,8 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
                 guess = CubicSpline(js[coarse], X[coarse], axis=0)(js[fine])
             else:
                 guess = np.stack([np.interp(js[fine], js[coarse], X[coarse][:, k]) for k in range(5)], -1)
-            r = newton(tangency_system(f1, f2, phis[fine]), guess, tol=opts.tol, maxiter=40, raise_on_failure=False,
-                       prefer=prefer, prefer_weights=PREFER_WEIGHTS)
+            r = newton(tangency_system(f1, f2, phis[fine]), guess, NewtonOptions(tol=opts.tol, maxiter=40),
+                       prefer=prefer, raise_on_failure=False)
             total_its += int(r.iterations.sum())
             good = r.converged & in_domain(f1, f2, r.x)
             X[fine[good]], tan_ok[fine[good]] = r.x[good], True

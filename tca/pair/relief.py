@@ -35,7 +35,7 @@ from __future__ import annotations
 import numpy as np
 
 from tca.contact.systems import edge_edge_system, edge_system, tangency_system
-from tca.numerics.newton import newton
+from tca.numerics.newton import NewtonOptions, newton
 from tca.pair.gear_pair import GearPair
 from tca.pair.bounded import onto_other_flank, tip_points
 from tca.pair.result import ContactKind, ReferencePairSolution, TCAOptions
@@ -203,7 +203,7 @@ def _refine(f1, f2, system, x0: np.ndarray, on: set, opts: TCAOptions):
     boundaries `on` = {(flank, boundary)} it lies on excepted), (x, residual, (flank, boundary)) if it
     converged outside exactly one boundary, (None, nan, None) otherwise."""
     with np.errstate(divide="ignore", invalid="ignore"):
-        r = newton(system, x0[None], tol=opts.tol, maxiter=40, raise_on_failure=False)
+        r = newton(system, x0[None], NewtonOptions(tol=opts.tol, maxiter=40), raise_on_failure=False)
     xr = r.x[0]
     if not (r.converged[0] and r.residual[0] <= opts.max_residual):
         return None, float("nan"), None

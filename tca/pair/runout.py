@@ -34,7 +34,7 @@ import numpy as np
 
 from tca.contact.systems import tangency_system
 from tca.errors import ConvergenceError
-from tca.numerics.newton import newton
+from tca.numerics.newton import NewtonOptions, newton
 from tca.pair.gear_pair import GearPair
 from tca.pair.bounded import bounded_pass
 from tca.pair.reference import classify_tangency, in_domain  # the reference pair's classification
@@ -84,7 +84,8 @@ def solve_candidate_pair(pair: GearPair, ref: ReferencePairSolution, k: int, idx
     tan_ok = np.zeros(n, bool)
     t = idx[ref.tangency[idx]]
     if len(t):
-        r = newton(tangency_system(f1, f2, ref.phi1[t]), ref.x[t], tol=opts.tol, maxiter=40, raise_on_failure=False)
+        r = newton(tangency_system(f1, f2, ref.phi1[t]), ref.x[t], NewtonOptions(tol=opts.tol, maxiter=40),
+                   raise_on_failure=False)
         good = r.converged & in_domain(f1, f2, r.x)
         X[t[good]], tan_ok[t[good]] = r.x[good], True
     kind = np.zeros(n, int)
