@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from tca.isostatic.flanks import REFLECT, PlanarFlank, TrainFlanks, apply, cross2, nearest_tooth, perp, rot2
+from tca.isostatic.flanks import REFLECT, PlacedTeeth, PlanarFlank, TrainFlanks, apply, cross2, nearest_tooth, perp, rot2
 from tca.isostatic.train import IsostaticTrain
 from tca.numerics.newton import NewtonOptions, newton
 
@@ -156,16 +156,17 @@ def line_crossing(flank: PlanarFlank, A, c, k, P0, nu, u0=None, iters: int = 8):
     return u
 
 
-def backlash_solve(fa: PlanarFlank, Aa, ca, ka, fb: PlanarFlank, Ab, cb, kb, ua0, ub0, tol: float):
-    """Signed distance s along the common normal of tooth ka of flank a and tooth kb of flank b (Eq. 3.19).
+def backlash_solve(a: PlacedTeeth, b: PlacedTeeth, ua0, ub0, tol: float):
+    """Signed distance s along the common normal of the teeth a and b, from guesses ua0, ub0 (M,) (Eq. 3.19).
 
     Returns (u_a, u_b, s, converged, margin) with margin the smaller working-area margin of both points [mm].
     """
+    fa, fb = a.flank, b.flank
 
     def fun(x, idx):
         ua, ub, s = x.T
-        Pa, ta, tau, Aak, ga = fa.place(Aa[idx], ca[idx], ka[idx], ua)
-        Pb, tb, tbu, _, _ = fb.place(Ab[idx], cb[idx], kb[idx], ub)
+        Pa, ta, tau, Aak, ga = a.take(idx).place(ua)
+        Pb, tb, tbu, _, _ = b.take(idx).place(ub)
         _, g1, g2 = fa.eval(ua)
         nl, dnl = fa.normal(g1, g2)
         na, dna = apply(Aak, nl), apply(Aak, dnl)
@@ -207,8 +208,8 @@ def mate_tooth(train: IsostaticTrain, flank: PlanarFlank, P: Poses, body: str, c
     return nearest_tooth(c0, sg, flank.pitch_angle, flank.teeth, np.arctan2(d[:, 1], d[:, 0]))
 
 
-def corner_gap(fc: PlanarFlank, Ac, cc, kc, uc, fm: PlanarFlank, Am, cm, km, samples: int = 9, iters: int = 12):
-    """Signed distance of the point u = uc of tooth kc of flank c from the working area of the mate flank.
+def corner_gap(teeth: PlacedTeeth, uc, mate: PlacedTeeth, samples: int = 9, iters: int = 12):
+    """Signed distance of the points u = uc (M,) of `teeth` from the working area of the `mate` teeth.
 
     Negative: the point is inside the mate's tooth. The foot of the normal is searched in the mate's working area
     (nearest of `samples` points, then Newton on (P_c - P_m) . t_m = 0, kept inside the area); where the point has
@@ -216,17 +217,18 @@ def corner_gap(fc: PlanarFlank, Ac, cc, kc, uc, fm: PlanarFlank, Am, cm, km, sam
     Returns (gap [mm], u of the foot on the mate).
     """
     k = len(uc)
-    Pc = fc.place(Ac, cc, kc, uc)[0]
+    fm = mate.flank
+    Pc = teeth.place(uc)[0]
     us = np.linspace(fm.u_form, fm.u_tip, samples)
     rep = lambda a: np.repeat(a, samples, 0)  # noqa: E731
-    Ps = fm.place(rep(Am), rep(cm), rep(km), np.tile(us, k))[0].reshape(k, samples, 2)
+    Ps = fm.place(rep(mate.A), rep(mate.c), rep(mate.k), np.tile(us, k))[0].reshape(k, samples, 2)
     u = us[np.argmin(np.linalg.norm(Ps - Pc[:, None], axis=-1), axis=1)]
     for _ in range(iters):  # foot of the normal from Pc on the mate: (Pc - Pm) . t_m = 0
-        Pm, t, tu, _, _ = fm.place(Am, cm, km, u)
+        Pm, t, tu, _, _ = mate.place(u)
         f = np.einsum("...i,...i", Pc - Pm, t)
         df = np.einsum("...i,...i", Pc - Pm, tu) - np.einsum("...i,...i", t, t)
         u = np.clip(u - f / np.where(np.abs(df) > 1e-12, df, -1e-12), fm.u_form, fm.u_tip)
-    Pm, t, tu, Amk, g = fm.place(Am, cm, km, u)
+    Pm, t, tu, Amk, g = mate.place(u)
     n = apply(Amk, fm.normal(*fm.eval(u)[1:])[0])
     foot = np.abs(np.einsum("...i,...i", Pc - Pm, t)) < 1e-9 * np.linalg.norm(t, axis=-1)
     return np.where(foot, np.einsum("...i,...i", Pc - Pm, n), np.inf), u

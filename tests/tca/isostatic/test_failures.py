@@ -85,6 +85,7 @@ def test_corner_gap_measures_penetration_of_a_point_into_the_mate():
     # sun's contact point has gap 0 to the planet flank; turning the planet by +-delta about its axis changes the
     # gap by -+ r_b2 delta along the line of action (1e-9 mm tolerance: Newton foot and round-off; the
     # linearisation error (r_b2 delta)^2 / rho ~ 1e-10 mm for delta = 1e-5 rad).
+    from tca.isostatic.flanks import PlacedTeeth
     from tca.isostatic.subtrain import Members, corner_gap, poses
 
     tr = IsostaticTrain(SUN, (PLANET,) * 3, RING)
@@ -94,7 +95,8 @@ def test_corner_gap_measures_penetration_of_a_point_into_the_mate():
     gaps = []
     for delta in (-1e-5, 0.0, 1e-5):
         P = poses(tr, fl, m, r.phi2[0] + delta, r.phi_c_planets[0])
-        g, _ = corner_gap(fl.sun, P.As, P.cs, m.teeth[:, 0], r.params[0, :, 0], fl.planet_s, P.Ap, P.cp, m.teeth[:, 1])
+        g, _ = corner_gap(PlacedTeeth(fl.sun, P.As, P.cs, m.teeth[:, 0]), r.params[0, :, 0],
+                          PlacedTeeth(fl.planet_s, P.Ap, P.cp, m.teeth[:, 1]))
         gaps.append(g)
     gaps = np.array(gaps)
     assert np.abs(gaps[1]).max() < 1e-9
