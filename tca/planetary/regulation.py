@@ -43,8 +43,8 @@ from tca.pair.analysis import ARCSEC, TCAOptions
 from tca.planetary.train import DoubleHelicalTrain, ShaftErrors, dz_first_order
 from tca.planetary.subgear import SubgearTE, periodic_peak, phi1_grid, run_subgear_tca
 
-__all__ = ["TwinTE", "TrainTE", "MemberRegulation", "TrainRegulation", "periodic_peak", "twin_te", "integrated_te",
-           "nominal_peak", "regulate_member", "regulate_train", "member_d_ex"]
+__all__ = ["TwinTE", "TrainTE", "RegulationOptions", "MemberRegulation", "TrainRegulation", "periodic_peak", "twin_te",
+           "integrated_te", "nominal_peak", "regulate_member", "regulate_train", "member_d_ex"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -151,6 +151,15 @@ def nominal_peak(train: DoubleHelicalTrain, opts: TCAOptions = TCAOptions(), cac
     return periodic_peak(run_subgear_tca(train, 0, "a", ShaftErrors(), 0.0, opts, cache=cache).te3)
 
 
+@dataclass(frozen=True)
+class RegulationOptions:
+    """Stopping rule of the secant on ΔZ: the TE maximum within ``tol`` [rad] of the target, at most ``maxiter``
+    TCA evaluations of a member."""
+
+    tol: float = 1e-3 * ARCSEC
+    maxiter: int = 12
+
+
 @dataclass(frozen=True, eq=False)
 class MemberRegulation:
     """Axial regulation of one member: ΔZ^(1) (Eq. 1.16), ΔZ^(2) (TCA) and the secant history."""
@@ -170,9 +179,10 @@ class MemberRegulation:
 
 
 def regulate_member(train: DoubleHelicalTrain, i: int, member: str, errors: ShaftErrors, target: float,
-                    opts: TCAOptions = TCAOptions(), tol: float = 1e-3 * ARCSEC, maxiter: int = 12,
+                    opts: TCAOptions = TCAOptions(), regulation: RegulationOptions = RegulationOptions(),
                     cache: dict | None = None) -> MemberRegulation:
     """ΔZ^(2) of member (shaft i, 'a'/'b') making its TE maximum equal `target` [rad]: secant on TCA results."""
+    tol, maxiter = regulation.tol, regulation.maxiter
     phi1 = phi1_grid(train, opts)
 
     def g(dz):
@@ -226,8 +236,8 @@ class TrainRegulation:
     tca_runs: int  # member evaluations (each two pair TCAs)
 
 
-def regulate_train(train: DoubleHelicalTrain, errors, opts: TCAOptions = TCAOptions(), tol: float = 1e-3 * ARCSEC,
-                   maxiter: int = 12, progress=None) -> TrainRegulation:
+def regulate_train(train: DoubleHelicalTrain, errors, opts: TCAOptions = TCAOptions(),
+                   regulation: RegulationOptions = RegulationOptions(), progress=None) -> TrainRegulation:
     """Regulate all 2n members (mirror images computed once) and integrate the TE of the train.
 
     ``progress(message)`` is called after each shaft (e.g. ``print``).
@@ -242,8 +252,8 @@ def regulate_train(train: DoubleHelicalTrain, errors, opts: TCAOptions = TCAOpti
     target = nominal_peak(train, opts, cache)
     regs, before, first, after = [], [], [], []
     for i, e in enumerate(errors):
-        ra = regulate_member(train, i, "a", e, target, opts, tol, maxiter, cache)
-        rb = ra if e.d_gamma == 0.0 else regulate_member(train, i, "b", e, target, opts, tol, maxiter, cache)
+        ra = regulate_member(train, i, "a", e, target, opts, regulation, cache)
+        rb = ra if e.d_gamma == 0.0 else regulate_member(train, i, "b", e, target, opts, regulation, cache)
         regs.append((ra, rb))
         mir = rb is ra
         before.append(TwinTE(i, {"a": ra.before, "b": rb.before}, mir))
