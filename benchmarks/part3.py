@@ -19,7 +19,7 @@ from tca.isostatic.dof import TrainConstraints, count_dof
 from tca.geometry.gear import Gear
 from tca.isostatic.analysis import ARCSEC, IsostaticOptions, phi1_grid, run_isostatic_tca
 from tca.isostatic.linear import indexing_closed_form, linear_response
-from tca.isostatic.train import PlanetaryTrain, PlanetPlacement
+from tca.isostatic.train import IsostaticTrain, PlanetPlacement
 from tca.pair.gear_pair import GearPair
 from tca.pair.analysis import TCAOptions, run_pair_tca
 from tca.report_data import indexing_error_placements, table_3_1_gears, table_3_1_planet
@@ -39,7 +39,7 @@ def _timed(f, *a, **k):
 
 
 def _cases(planet):
-    base = PlanetaryTrain(SUN, (planet,) * 3, RING)
+    base = IsostaticTrain(SUN, (planet,) * 3, RING)
     return {
         "ideal (3.4.1, Figs. 3.5/3.6)": (base, dict(carrier_revolutions=1.0)),
         "indexing dE_t = 20 um (3.4.2, Figs. 3.7/3.8)": (base.with_(placements=DET), dict(carrier_revolutions=1.0)),
@@ -108,13 +108,13 @@ def main(argv=None) -> int:
     L += ["## Speed: one carrier revolution, 3 planets", "", "| planets | method | positions | wall [s] | cpu [s] |",
           "|---|---|---|---|---|"]
     for variant, planet in (("involute", PLANET), ("double_crowned", CROWNED)):
-        tr = PlanetaryTrain(SUN, (planet,) * 3, RING, placements=DET)
+        tr = IsostaticTrain(SUN, (planet,) * 3, RING, placements=DET)
         for method in ("fictitious", "direct"):
             for n in (720, 2880):
                 phi = phi1_grid(tr, n, carrier_revolutions=1.0)
                 _, w, c = _timed(run_isostatic_tca, tr, phi, IsostaticOptions(method=method))
                 L.append(f"| {variant} (dE_t = 20 um) | {method} | {n} | {w:.2f} | {c:.2f} |")
-    tr = PlanetaryTrain(SUN, (dataclasses.replace(PLANET, runout=0.02), PLANET, PLANET), RING)
+    tr = IsostaticTrain(SUN, (dataclasses.replace(PLANET, runout=0.02), PLANET, PLANET), RING)
     phi = phi1_grid(tr, 7200, planet_revolutions=30.0)
     r30, w, c = _timed(run_isostatic_tca, tr, phi)
     plot_sun_center(r30, out / "involute_planet_runout_30rev_sun_center.png", title="planet run-out, 30 planet turns")
@@ -125,7 +125,7 @@ def main(argv=None) -> int:
 
     # ---------------------------------------------------------------- the "8 arcsec" of 3.4.1
     pair = run_pair_tca(GearPair(SUN, CROWNED), TCAOptions(cycles=2, steps_per_cycle=80))
-    tr1 = PlanetaryTrain(SUN, (CROWNED,), RING, TrainConstraints(1))
+    tr1 = IsostaticTrain(SUN, (CROWNED,), RING, TrainConstraints(1))
     single = run_isostatic_tca(tr1, phi1_grid(tr1, 400, sun_revolutions=0.05))
     L += ["## Report 3.4.1: \"an ordinary gear drive formed by the sun and the planet ... parabolic TE of 8 arcsec\"", "",
           "| quantity | value [arcsec] |", "|---|---|",
@@ -143,7 +143,7 @@ def main(argv=None) -> int:
     L += ["## Double-crowned planets: sun motion and resolution", "",
           "| positions per carrier turn | lag [arcsec] | TE pp [arcsec] | sun min / max [um] | circle R [um] |",
           "|---|---|---|---|---|"]
-    trc = PlanetaryTrain(SUN, (CROWNED,) * 3, RING)
+    trc = IsostaticTrain(SUN, (CROWNED,) * 3, RING)
     for n in (720, 7200):
         r = run_isostatic_tca(trc, phi1_grid(trc, n, carrier_revolutions=1.0))
         mag = np.linalg.norm(r.sun_center_um, axis=1)
@@ -168,7 +168,7 @@ def main(argv=None) -> int:
           "|---|---|---|---|---|---|"]
     for (N1, N2, N3, m, al) in ((65, 43, 151, 4.0, 20.0), (30, 21, 72, 3.0, 25.0), (45, 30, 105, 2.5, 17.5),
                                 (24, 21, 66, 2.0, 20.0)):
-        base = PlanetaryTrain(Gear("sun", N1, m, d(al), 10 * m), (Gear("planet", N2, m, d(al), 10 * m),) * 3,
+        base = IsostaticTrain(Gear("sun", N1, m, d(al), 10 * m), (Gear("planet", N2, m, d(al), 10 * m),) * 3,
                               Gear("ring", N3, m, d(al), 10 * m, internal=True))
         for dEt in (0.02, 0.05):
             tr = base.with_(placements=(PlanetPlacement(tangential=dEt), PlanetPlacement(), PlanetPlacement()))
@@ -176,7 +176,7 @@ def main(argv=None) -> int:
             c = indexing_closed_form(tr.sun.r_b, d(al), tr.ratio, dEt)
             L.append(f"| {N1}/{N2}/{N3}, {m}, {al} | {dEt * 1e3:.0f} | {c.dphic / ARCSEC:.4f} | "
                      f"{r.carrier_lag_mean_arcsec:.4f} | {c.dE1 * 1e3:.4f} | {r.sun_circle[1]:.4f} |")
-    tr = PlanetaryTrain(SUN, (PLANET,) * 3, RING, placements=(PlanetPlacement(0.02, 0.01), PlanetPlacement(-0.01),
+    tr = IsostaticTrain(SUN, (PLANET,) * 3, RING, placements=(PlanetPlacement(0.02, 0.01), PlanetPlacement(-0.01),
                                                                 PlanetPlacement(0.0, -0.02)),
                         carrier_center=(0.01, 0.015))
     tr = tr.with_(sun=dataclasses.replace(SUN, runout=0.015, runout_phase=1.0),
@@ -200,7 +200,7 @@ def main(argv=None) -> int:
         L.append(f"| {label} | {dc.dof} | {dc.constraints} | {dc.isostatic_planets} | {dc.first_order_rank} | {dc.state} |")
     L += ["", "Case 3 is isostatic by the count of section 3.2 but singular: any member's translation changes the "
           "planets' loop backlash as a first harmonic of their angles, so two floating axes duplicate each other "
-          "(the Jacobian of Eq. 3.22 has two zero singular values, tests/tca/test_dof.py). The simulation refuses it.", ""]
+          "(the Jacobian of Eq. 3.22 has two zero singular values, tests/tca/isostatic/test_dof.py). The simulation refuses it.", ""]
     (out / "report.md").write_text("\n".join(L) + "\n")
     print("\n".join(L))
     return 0

@@ -12,9 +12,10 @@ from tca.geometry.modifications.crowning import DiskPlunge
 from tca.contact.ellipse import contact_ellipse
 from tca.geometry.modifications.end_relief import EndRelief, RelievedSurface
 from tca.errors import ConvergenceError, GearfeError, GeometryError, InputError
-from tca.geometry.gear import FlankArea, Gear, TipRelief
+from tca.geometry.gear import FlankArea, Gear
+from tca.geometry.modifications.tip_relief import TipRelief
 from tca.rating.root_stress import RootFactors, root_factors, sigma_f0
-from tca.numerics.newton import NewtonResult, newton
+from tca.numerics.newton import NewtonOptions, NewtonResult, PreferredPoint, newton
 from tca.pair.gear_pair import GearPair, Misalignment
 from tca.pair.analysis import ARCSEC, ContactKind, PairTCAResult, TCAOptions, ellipse_outlines, run_pair_tca, solve_reference_pair
 from tca.pair.te import MeshContact, MeshTE, PathOfContact, mesh_contact, path_of_contact, position_angle
@@ -24,7 +25,8 @@ from tca.numerics.transforms import Mount, rot_x, rot_y, rot_z
 
 __all__ = [
     "ARCSEC", "ContactKind", "ConvergenceError", "DeviatedSurface", "DiskPlunge", "FlankArea", "Gear", "GearPair",
-    "GearfeError", "GeometryError", "HelicoidSurface", "InputError", "Misalignment", "Mount", "NewtonResult",
+    "GearfeError", "GeometryError", "HelicoidSurface", "InputError", "Misalignment", "Mount", "NewtonOptions",
+    "NewtonResult", "PreferredPoint",
     "PairTCAResult", "PlacedFlank", "RackCutter", "SurfacePoints", "TCAOptions", "ToothSurface", "contact_ellipse",
     "corner_system", "edge_edge_system", "edge_system", "ellipse_outlines", "newton", "rot_x", "rot_y", "rot_z",
     "run_pair_tca", "solve_reference_pair", "tangency_system",

@@ -23,7 +23,7 @@ import math
 from tca.geometry.modifications.crowning import DiskPlunge
 from tca.geometry.gear import Gear
 from tca.isostatic.train import PlanetPlacement
-from tca.planetary.train import PlanetaryTrain
+from tca.planetary.train import DoubleHelicalTrain
 
 __all__ = [
     "TABLE_1_1_MEMBER_GAP", "TABLE_1_1_PLANETS", "indexing_error_placements", "table_1_1_gears", "table_1_1_planet",
@@ -69,10 +69,10 @@ def table_1_1_gears(beta_sun_deg: float = 10.25, beta_ring_deg: float = 9.75,
     return table_1_1_sun(beta_sun_deg), table_1_1_planet(crowned), table_1_1_ring(beta_ring_deg, crowned)
 
 
-def table_1_1_train(beta_sun_deg: float = 10.25, beta_ring_deg: float = 9.75, crowned: bool = True) -> PlanetaryTrain:
+def table_1_1_train(beta_sun_deg: float = 10.25, beta_ring_deg: float = 9.75, crowned: bool = True) -> DoubleHelicalTrain:
     """Table 1.1 double-helical train: 5 planet shafts, member gap 10 mm, helices [deg]."""
-    return PlanetaryTrain(*table_1_1_gears(beta_sun_deg, beta_ring_deg, crowned), TABLE_1_1_PLANETS,
-                          TABLE_1_1_MEMBER_GAP)
+    return DoubleHelicalTrain(*table_1_1_gears(beta_sun_deg, beta_ring_deg, crowned), TABLE_1_1_PLANETS,
+                              TABLE_1_1_MEMBER_GAP)
 
 
 def table_3_1_sun(name: str = "sun") -> Gear:

@@ -18,7 +18,8 @@ from pathlib import Path
 import numpy as np
 
 from tca.pair.analysis import ARCSEC, ContactKind
-from tca.planetary.regulation import TrainRegulation, TrainTE, member_d_ex, periodic_peak, regulate_train
+from tca.planetary.regulation import (RegulationOptions, TrainRegulation, TrainTE, member_d_ex, periodic_peak,
+                                     regulate_train)
 
 from pipelines.cases.planetary import read_installment, read_regulation_options, read_train
 from pipelines.cases.reader import ARCMIN, read_tca_options
@@ -37,7 +38,8 @@ def run(case: Table, out: Path) -> dict:
     ro = read_regulation_options(case.table("regulation", required=False))
     opts = read_tca_options(case.table("tca", required=False))
     title = case.get("title", str, "")
-    reg = regulate_train(train, errors, opts, ro.tol, ro.max_iterations, progress=lambda m: print(f"  {m}", flush=True))
+    reg = regulate_train(train, errors, opts, RegulationOptions(ro.tol, ro.max_iterations),
+                         progress=lambda m: print(f"  {m}", flush=True))
 
     write_te_csv(reg, out / "te.csv")
     plot_train_te(reg, out / "fig14_te.png", title)

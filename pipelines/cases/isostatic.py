@@ -11,7 +11,7 @@ from tca.geometry.modifications.crowning import DiskPlunge
 from tca.isostatic.dof import TrainConstraints
 from tca.errors import InputError
 from tca.isostatic.analysis import IsostaticOptions, phi1_grid
-from tca.isostatic.train import PlanetaryTrain, PlanetPlacement
+from tca.isostatic.train import IsostaticTrain, PlanetPlacement
 
 from pipelines.cases.reader import read_gears
 from pipelines.cases.schema import Table
@@ -31,7 +31,7 @@ def _vec_um(t: Table, key: str):
     return (v[0] * 1e-3, v[1] * 1e-3)
 
 
-def read_train(case: Table) -> PlanetaryTrain:
+def read_train(case: Table) -> IsostaticTrain:
     """The planetary train of an isostatic case (gears, crowning choice, constraints, errors)."""
     gears = read_gears(case)
     for name in ("sun", "planet", "ring"):
@@ -78,11 +78,11 @@ def read_train(case: Table) -> PlanetaryTrain:
             planets[i - 1] = dataclasses.replace(planet, name=f"planet{i}", runout=ro, runout_phase=ph)
         e.done()
     t.done()
-    return PlanetaryTrain(sun, tuple(planets), ring, constraints=cons, placements=tuple(placements),
+    return IsostaticTrain(sun, tuple(planets), ring, constraints=cons, placements=tuple(placements),
                           sun_center=centres["sun"], carrier_center=centres["carrier"], ring_center=centres["ring"])
 
 
-def read_run(case: Table, train: PlanetaryTrain) -> np.ndarray:
+def read_run(case: Table, train: IsostaticTrain) -> np.ndarray:
     r = case.table("run")
     spans = {k: r.get(k, float, None, lo=0.0, lo_open=True, hi=200.0)
              for k in ("sun_revolutions", "carrier_revolutions", "planet_revolutions")}

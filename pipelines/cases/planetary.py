@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from tca.errors import InputError
-from tca.planetary.train import PlanetaryTrain, ShaftErrors
+from tca.planetary.train import DoubleHelicalTrain, ShaftErrors
 
 from tca.units import ARCSEC
 
@@ -13,11 +13,11 @@ from pipelines.cases.reader import ARCMIN, read_gears
 from pipelines.models.stress.case import REGULATION
 from pipelines.cases.schema import Table
 
-__all__ = ["read_train", "read_installment", "RegulationOptions", "read_regulation_options"]
+__all__ = ["read_train", "read_installment", "RegulationSettings", "read_regulation_options"]
 
 
 @dataclass(frozen=True)
-class RegulationOptions:
+class RegulationSettings:
     """The ``[regulation]`` table: the iteration of Step 3 (tolerance [rad], iterations) and, in stress cases,
     the mode, the given axial displacements dz [mm] of members a, b and the members' phase ('' = default)."""
 
@@ -28,11 +28,11 @@ class RegulationOptions:
     member_phase: str = ""
 
 
-def read_regulation_options(t: Table | None, stress: bool = False, phases: tuple = ()) -> RegulationOptions:
+def read_regulation_options(t: Table | None, stress: bool = False, phases: tuple = ()) -> RegulationSettings:
     """``[regulation]`` of a planetary (``tol_arcsec``, ``max_iterations``) or, with ``stress``, a twin stress case
     (also ``mode``, ``dz_a_mm``, ``dz_b_mm``, ``member_phase`` among ``phases``); the one reader of that table."""
     if t is None:
-        return RegulationOptions()
+        return RegulationSettings()
     mode, dz, phase = "tca", (0.0, 0.0), ""
     if stress:
         mode = t.get("mode", str, "tca", choices=REGULATION)
@@ -46,9 +46,9 @@ def read_regulation_options(t: Table | None, stress: bool = False, phases: tuple
     tol = t.get("tol_arcsec", float, 1e-3, lo=1e-6, hi=10.0)
     maxit = t.get("max_iterations", int, 12, lo=2, hi=50)
     t.done()
-    return RegulationOptions(tol * ARCSEC, maxit, mode, dz, phase)
+    return RegulationSettings(tol * ARCSEC, maxit, mode, dz, phase)
 
-def read_train(case: Table) -> PlanetaryTrain:
+def read_train(case: Table) -> DoubleHelicalTrain:
     """Train from the case: gears sun, planet, ring; ``planets``; ``member_gap_mm``."""
     gears = read_gears(case)
     for name in ("sun", "planet", "ring"):
@@ -63,7 +63,7 @@ def read_train(case: Table) -> PlanetaryTrain:
                              "analysed by pair cases and by isostatic cases, kind = 'isostatic')")
     n = case.get("planets", int, lo=1, hi=20)
     gap = case.get("member_gap_mm", float, lo=0.0, hi=1000.0)
-    return PlanetaryTrain(gears["sun"], gears["planet"], gears["ring"], n, gap)
+    return DoubleHelicalTrain(gears["sun"], gears["planet"], gears["ring"], n, gap)
 
 
 def _floats(t: Table, key: str, n: int, lo: float, hi: float) -> list[float]:

@@ -50,7 +50,8 @@ from pathlib import Path
 from tca.geometry.modifications.crowning import DiskPlunge
 from tca.errors import GearfeError, InputError
 from tca.geometry.modifications.end_relief import END_RELIEF_ENDS, EndRelief
-from tca.geometry.gear import Gear, TipRelief
+from tca.geometry.gear import Gear
+from tca.geometry.modifications.tip_relief import TipRelief
 from tca.pair.gear_pair import GearPair, Misalignment
 from tca.pair.analysis import TCAOptions
 from tca.units import ARCMIN

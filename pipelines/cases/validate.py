@@ -43,7 +43,7 @@ def read_planetary_tca(t: Table) -> None:
 
 def read_isostatic_tca(t: Table) -> None:
     """Every key of a ``kind = "isostatic"`` case, and the mobility of its train (consumes ``t``)."""
-    from tca.isostatic.analysis import _check_mobility
+    from tca.isostatic.analysis import check_mobility
 
     from pipelines.cases.isostatic import read_run, read_solver, read_train
 
@@ -51,7 +51,7 @@ def read_isostatic_tca(t: Table) -> None:
     train = read_train(t)
     read_run(t, train)
     read_solver(t)
-    _check_mobility(train)
+    check_mobility(train)
     t.done()
 
 

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from tca.geometry.gear import Gear
-from tca.geometry.surfaces import SurfacePoints, ToothSurface, _cross
+from tca.geometry.surfaces import SurfacePoints, ToothSurface, cross3
 from tca.numerics.transforms import Mount
 
 __all__ = ["PlacedFlank", "tangency_system", "edge_system", "edge_edge_system", "corner_system", "boundary_derivs",
@@ -78,12 +78,12 @@ def _rot(R, a):
 
 def _dn(loc: SurfacePoints, which: str):
     """Derivative of the local unit normal w.r.t. u or v."""
-    c = _cross(loc.r_u, loc.r_v)
+    c = cross3(loc.r_u, loc.r_v)
     nc = np.linalg.norm(c, axis=-1, keepdims=True)
     if which == "u":
-        dc = _cross(loc.r_uu, loc.r_v) + _cross(loc.r_u, loc.r_uv)
+        dc = cross3(loc.r_uu, loc.r_v) + cross3(loc.r_u, loc.r_uv)
     else:
-        dc = _cross(loc.r_uv, loc.r_v) + _cross(loc.r_u, loc.r_vv)
+        dc = cross3(loc.r_uv, loc.r_v) + cross3(loc.r_u, loc.r_vv)
     n = loc.n
     return (dc - _dot(dc, n)[..., None] * n) / nc * np.sign(_dot(c, n))[..., None]
 

@@ -80,7 +80,7 @@ from tca.numerics.chebyshev import Cheb2D, cheb_points
 from tca.errors import ConvergenceError, GeometryError, InputError
 from tca.geometry.gear import Gear
 from tca.geometry.rack import RackSegment
-from tca.geometry.surfaces import HelicoidSurface, SurfacePoints, ToothSurface, _cross, _unit_normal
+from tca.geometry.surfaces import HelicoidSurface, SurfacePoints, ToothSurface, cross3, unit_normal
 from tca.numerics.transforms import Mount, rot_z
 
 __all__ = ["FaceGear", "FaceArea", "FaceFlankSurface", "FaceLimits"]
@@ -94,11 +94,11 @@ def _dot(a, b):
 
 def _normal_derivs(sp: SurfacePoints):
     """Derivatives n_u, n_v of the unit normal of a surface (Weingarten, from r_uu, r_uv, r_vv)."""
-    c = _cross(sp.r_u, sp.r_v)
+    c = cross3(sp.r_u, sp.r_v)
     nc = np.linalg.norm(c, axis=-1, keepdims=True)
     sgn = np.sign(_dot(c, sp.n))[..., None]
     out = []
-    for dc in (_cross(sp.r_uu, sp.r_v) + _cross(sp.r_u, sp.r_uv), _cross(sp.r_uv, sp.r_v) + _cross(sp.r_u, sp.r_vv)):
+    for dc in (cross3(sp.r_uu, sp.r_v) + cross3(sp.r_u, sp.r_uv), cross3(sp.r_uv, sp.r_v) + cross3(sp.r_u, sp.r_vv)):
         out.append((dc - _dot(dc, sp.n)[..., None] * sp.n) / nc * sgn)
     return out
 
@@ -135,7 +135,7 @@ class FaceFlankSurface(ToothSurface):
 
     def evaluate(self, u, v) -> SurfacePoints:
         r, r_u, r_v, r_uu, r_uv, r_vv = self.fit(u, v)
-        return SurfacePoints(r, r_u, r_v, r_uu, r_uv, r_vv, _unit_normal(r_u, r_v, self.orient))
+        return SurfacePoints(r, r_u, r_v, r_uu, r_uv, r_vv, unit_normal(r_u, r_v, self.orient))
 
 
 @dataclass(frozen=True)
@@ -251,7 +251,7 @@ class FaceGear:
             ca, sa, eta0, a, u0 = seg.coef
             mod = RackSegment("flank", seg.t0, seg.t1, (ca, sa, eta0, a - self.crowning, u0))
             self._cache[key] = HelicoidSurface(mod, sh.r_p, 1, 1.0 / math.cos(sh.beta_ref), -side, sh.k_screw,
-                                               sh._v_range())
+                                               sh.v_range)
         return self._cache[key]
 
     def _root_slope(self, side: int) -> float:
@@ -297,7 +297,7 @@ class FaceGear:
             return np.stack([-x[..., 1], x[..., 0], np.zeros_like(x[..., 0])], -1)
 
         def vel(r):
-            return ez(r) - q * _cross(z2, r - C)
+            return ez(r) - q * cross3(z2, r - C)
 
         def fval(psi, with_deriv=False):
             rs = sp.r if psi.ndim == 1 else sp.r[:, None, :]
@@ -308,7 +308,7 @@ class FaceGear:
             if not with_deriv:
                 return f
             rd = ez(r)
-            dV = ez(rd) - q * _cross(z2, rd)
+            dV = ez(rd) - q * cross3(z2, rd)
             return f, _dot(ez(n), V) + _dot(n, dV)
 
         # bracket the root nearest the position where the point crosses the axial plane of P
@@ -366,11 +366,11 @@ class FaceGear:
             ru, rv = rot(psi, sp.r_u), rot(psi, sp.r_v)
             nu_s, nv_s = _normal_derivs(sp)
             nu, nv = rot(psi, nu_s), rot(psi, nv_s)
-            fu = _dot(nu, V) + _dot(n, ez(ru) - q * _cross(z2, ru))
-            fv = _dot(nv, V) + _dot(n, ez(rv) - q * _cross(z2, rv))
+            fu = _dot(nu, V) + _dot(n, ez(ru) - q * cross3(z2, ru))
+            fv = _dot(nv, V) + _dot(n, ez(rv) - q * cross3(z2, rv))
             pu, pv = -fu / fp, -fv / fp
             tu, tv = ru + V * pu[:, None], rv + V * pv[:, None]
-            D = _dot(n, _cross(tu, tv)) / _dot(n, _cross(ru, rv))
+            D = _dot(n, cross3(tu, tv)) / _dot(n, cross3(ru, rv))
             out["r2_u"] = np.einsum("nij,nj->ni", Q, tu).reshape(shape + (3,))
             out["r2_v"] = np.einsum("nij,nj->ni", Q, tv).reshape(shape + (3,))
             out["D"] = D.reshape(shape)
@@ -634,9 +634,9 @@ class FaceGear:
         if err >= self.fit_tol:
             raise ConvergenceError(f"{self.name}: Chebyshev fit of the face-gear flank", f"{nu}x{nv} nodes", err, nv)
         r, r_u, r_v = fit(PU, PV, derivs=1)
-        c = _cross(r_u, r_v)
+        c = cross3(r_u, r_v)
         orient = float(np.sign(np.mean(_dot(c, ex["n2"]))))
-        nfit = _unit_normal(r_u, r_v, orient)
+        nfit = unit_normal(r_u, r_v, orient)
         nerr = float(np.linalg.norm(nfit - ex["n2"], axis=-1).max())
         surf = FaceFlankSurface(fit, orient, err, nerr)
         self._cache[key] = surf

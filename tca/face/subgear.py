@@ -57,10 +57,11 @@ from tca.contact.ellipse import contact_ellipse
 from tca.errors import ConvergenceError, GeometryError, InputError
 from tca.face.face_gear import FaceGear
 from tca.geometry.gear import Gear
-from tca.numerics.newton import NewtonResult, newton
+from tca.numerics.newton import NewtonOptions, NewtonResult, PreferredPoint, newton
 from tca.numerics.transforms import Mount
 
-__all__ = ["FaceMesh", "FaceMeshResult", "run_face_mesh", "trace_reference_pair", "ARCSEC", "SURFACE", "EDGE"]
+__all__ = ["FaceMesh", "FaceMeshResult", "ReferenceTrace", "run_face_mesh", "trace_reference_pair", "ARCSEC", "SURFACE",
+           "EDGE"]
 
 PREFER_WEIGHTS = np.array([1e-3, 1e-3, 0.0, 0.0, 0.0])
 
@@ -208,7 +209,7 @@ class _Contacts:
             Rp, Rm = R[k:(m + 1) * k].reshape(m, k, -1), R[(m + 1) * k:].reshape(m, k, -1)
             return R[:k], np.moveaxis((Rp - Rm) / (2 * _FD_STEP[:, None, None]), 0, -1)
 
-        r = newton(fun, guess, tol=1e-11, maxiter=40, raise_on_failure=False, max_backtracks=8)
+        r = newton(fun, guess, NewtonOptions(tol=1e-11, maxiter=40, max_backtracks=8), raise_on_failure=False)
         return NewtonResult(r.x, r.residual, r.iterations, r.residual < ACCEPT)
 
     def solve(self, phis, guess, hint=None):
@@ -385,8 +386,8 @@ ACCEPT = 1e-9  # [mm] residual accepted when Newton (target 1e-11 mm) stalls: co
 
 
 def _newton(f1, f2, phis, guess, strict=False):
-    r = newton(tangency_system(f1, f2, phis), guess, tol=1e-11, maxiter=40, raise_on_failure=False,
-               prefer=_prefer(f1), prefer_weights=PREFER_WEIGHTS, max_backtracks=8)
+    r = newton(tangency_system(f1, f2, phis), guess, NewtonOptions(tol=1e-11, maxiter=40, max_backtracks=8),
+               prefer=PreferredPoint(_prefer(f1), PREFER_WEIGHTS), raise_on_failure=False)
     ok = r.residual < ACCEPT
     if strict and not ok.all():
         i = int(np.argmax(np.where(ok, -np.inf, r.residual)))
@@ -410,13 +411,25 @@ def run_face_mesh(mesh: FaceMesh, steps_per_cycle: int = 120, area_tol: float = 
     if not (isinstance(steps_per_cycle, int) and 8 <= steps_per_cycle <= 5000):
         raise InputError("tca.steps_per_cycle", steps_per_cycle, "an integer in [8, 5000]")
     cts = _Contacts(mesh, area_tol)
-    phi, X, kind, code, res, stops = trace_reference_pair(mesh, steps_per_cycle, area_tol)
-    return _finish(mesh, cts, phi, X, kind, code, res, stops, area_tol, t0)
+    return _finish(cts, trace_reference_pair(mesh, steps_per_cycle, area_tol), t0)
 
 
-def trace_reference_pair(mesh: FaceMesh, steps_per_cycle: int = 120, area_tol: float = 1e-7, span: float = 1.3):
+@dataclass(frozen=True, eq=False)
+class ReferenceTrace:
+    """Contact of the reference pair on a grid of driver angles (:func:`trace_reference_pair`)."""
+
+    phi: np.ndarray  # driver angles [rad]
+    x: np.ndarray  # (n, 5) u1, v1, u2, v2, phi_driven
+    kind: np.ndarray  # SURFACE or EDGE
+    code: np.ndarray  # 10 e + b of the boundary for edge contact
+    residual: np.ndarray
+    stops: dict  # direction (+1, -1) -> (driver angle [rad], code) where the contact ends
+
+
+def trace_reference_pair(mesh: FaceMesh, steps_per_cycle: int = 120, area_tol: float = 1e-7,
+                         span: float = 1.3) -> ReferenceTrace:
     """Contact of the reference pair on the grid phi_0 + j T/steps, |j| <= span steps, by block continuation
-    from the pitch point: (phi, x, kind, code, residual, stops) where the contact ends (angle, code)."""
+    from the pitch point, and where it ends (`stops`)."""
     cts = _Contacts(mesh, area_tol)
     T = mesh.pitches[0]
     phi0 = mesh.start_angle()
@@ -462,11 +475,13 @@ def trace_reference_pair(mesh: FaceMesh, steps_per_cycle: int = 120, area_tol: f
     kind = np.array([store[k][1] for k in ks])
     code = np.array([store[k][2] for k in ks])
     res = np.array([store[k][3] for k in ks])
-    return phi, X, kind, code, res, stops
+    return ReferenceTrace(phi, X, kind, code, res, stops)
 
 
-def _finish(mesh, cts, phi, X, kind, code, res, stops, area_tol, t0):
+def _finish(cts: _Contacts, trace: ReferenceTrace, t0: float) -> FaceMeshResult:
     """Transitions (Eqs. 2.7-2.8, 2.11-2.12) and working-area margins of a traced reference pair."""
+    mesh, area_tol = cts.mesh, cts.area_tol
+    phi, X, kind, code, res, stops = trace.phi, trace.x, trace.kind, trace.code, trace.residual, trace.stops
     T, Tn = mesh.pitches
     phi0 = mesh.start_angle()
     h = phi[1] - phi[0]

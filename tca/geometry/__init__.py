@@ -3,7 +3,8 @@
 Tooth modifications (crowning, tip and end relief) live in :mod:`tca.geometry.modifications`.
 """
 
-from tca.geometry.gear import FlankArea, Gear, TipRelief
+from tca.geometry.gear import FlankArea, Gear
+from tca.geometry.modifications.tip_relief import TipRelief
 from tca.geometry.rack import RackCutter, RackSegment
 from tca.geometry.surfaces import DeviatedSurface, HelicoidSurface, SurfacePoints, ToothSurface
 

@@ -28,7 +28,7 @@ from tca.numerics.chebyshev import Cheb2D
 from tca.geometry.profile import envelope_profile
 from tca.geometry.rack import RackSegment
 
-__all__ = ["SurfacePoints", "ToothSurface", "HelicoidSurface", "DeviatedSurface"]
+__all__ = ["SurfacePoints", "ToothSurface", "HelicoidSurface", "DeviatedSurface", "cross3", "unit_normal"]
 
 
 class SurfacePoints(NamedTuple):
@@ -51,7 +51,8 @@ class SurfacePoints(NamedTuple):
         return SurfacePoints(*B)
 
 
-def _cross(a, b):
+def cross3(a, b):
+    """Cross product a x b of 3-vectors along the last axis, broadcast (..., 3)."""
     out = np.empty(np.broadcast_shapes(a.shape, b.shape))
     out[..., 0] = a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1]
     out[..., 1] = a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2]
@@ -59,8 +60,9 @@ def _cross(a, b):
     return out
 
 
-def _unit_normal(r_u, r_v, orient):
-    c = _cross(r_u, r_v)
+def unit_normal(r_u, r_v, orient):
+    """Unit normal orient (r_u x r_v) / |r_u x r_v| (..., 3); ``orient`` +-1 turns it out of the tooth material."""
+    c = cross3(r_u, r_v)
     return c * (orient / np.sqrt(np.einsum("...i,...i", c, c)))[..., None]
 
 
@@ -124,7 +126,7 @@ class HelicoidSurface(ToothSurface):
         put(4, g1, k, rot90=True)
         put(5, g, -(k**2))
         r, r_u, r_v, r_uu, r_uv, r_vv = out
-        return SurfacePoints(r, r_u, r_v, r_uu, r_uv, r_vv, _unit_normal(r_u, r_v, self.orient))
+        return SurfacePoints(r, r_u, r_v, r_uu, r_uv, r_vv, unit_normal(r_u, r_v, self.orient))
 
 
 class DeviatedSurface(ToothSurface):
@@ -142,4 +144,4 @@ class DeviatedSurface(ToothSurface):
         d3 = [np.concatenate([x, z], -1) for x in d]
         r_u, r_v = b.r_u + d3[1], b.r_v + d3[2]
         return SurfacePoints(b.r + d3[0], r_u, r_v, b.r_uu + d3[3], b.r_uv + d3[4], b.r_vv + d3[5],
-                             _unit_normal(r_u, r_v, self.orient))
+                             unit_normal(r_u, r_v, self.orient))

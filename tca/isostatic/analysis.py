@@ -42,13 +42,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from tca.errors import ConvergenceError, InputError
-from tca.isostatic.flanks import apply, nearest_tooth, rot2
-from tca.isostatic.subtrain import (BODY_CARRIER, BODY_RING, BODY_SUN, JT_CENTRES, Members, TrainFlanks, line_crossing,
+from tca.isostatic.flanks import TrainFlanks, apply, nearest_tooth, rot2
+from tca.isostatic.subtrain import (BODY_CARRIER, BODY_RING, BODY_SUN, JT_CENTRES, Members, line_crossing,
                              mate_tooth, poses, subtrain_eval)
 from tca.isostatic.result import ARCSEC, IsostaticResult, dominant_period, fit_circle  # noqa: F401  (re-exported)
 from tca.isostatic.switching import switch_pairs
-from tca.isostatic.train import PlanetaryTrain
-from tca.numerics.newton import newton
+from tca.isostatic.train import IsostaticTrain
+from tca.numerics.newton import NewtonOptions, newton
+
+__all__ = ["IsostaticOptions", "phi1_grid", "check_mobility", "scaled_tolerances", "ROUNDING_FACTOR",
+           "run_isostatic_tca", "ARCSEC", "IsostaticResult", "dominant_period", "fit_circle"]
 
 _BODY = {"sun": BODY_SUN, "carrier": BODY_CARRIER, "ring": BODY_RING}
 
@@ -80,7 +83,7 @@ class IsostaticOptions:
                 raise InputError(f"solver.{name}", v, "an integer in [1, 200]")
 
 
-def phi1_grid(train: PlanetaryTrain, positions: int, *, sun_revolutions: float | None = None,
+def phi1_grid(train: IsostaticTrain, positions: int, *, sun_revolutions: float | None = None,
               carrier_revolutions: float | None = None, planet_revolutions: float | None = None,
               start: float = 0.0) -> np.ndarray:
     """`positions` equally spaced sun angles over a span given in sun, carrier or planet (relative) turns [rad]."""
@@ -98,7 +101,7 @@ def phi1_grid(train: PlanetaryTrain, positions: int, *, sun_revolutions: float |
     return start + 2 * math.pi * sun * np.arange(positions) / positions
 
 
-def _check_mobility(train: PlanetaryTrain) -> bool:
+def check_mobility(train: IsostaticTrain) -> bool:
     """Raise for set-ups that cannot be simulated; True when the train is rigid and hyperstatic."""
     d = train.dof
     free = train.constraints.free_centres
@@ -126,7 +129,7 @@ def _where_pos(phi1, pos, n):
     return lambda j: f"phi1 = {math.degrees(phi1[pos[j]]):.6f} deg (position {pos[j] + 1} of {n})"
 
 
-def _nominal(train: PlanetaryTrain, fl: TrainFlanks, m: Members):
+def _nominal(train: IsostaticTrain, fl: TrainFlanks, m: Members):
     """Tooth indices and guesses x = (u1, u2s, u2r, u3, phi2, phic) from the nominal motion."""
     N1, N2 = train.sun.teeth, train.planet.teeth
     phc = train.ratio * m.phi1
@@ -157,7 +160,7 @@ def _inner(train, fl, m: Members, x0, opts, where):
     def fun(x, idx):
         return subtrain_eval(train, fl, m.take(idx), x)
 
-    return newton(fun, x0, tol=opts.tol, maxiter=40, what="subtrain tangency (Eq. 3.18)", where=where)
+    return newton(fun, x0, NewtonOptions(tol=opts.tol, maxiter=40), what="subtrain tangency (Eq. 3.18)", where=where)
 
 
 def _set_free(m: Members, free, E, Np):
@@ -230,8 +233,8 @@ def _solve_direct(train, fl, m, x, E, free, opts, wpos):
             JJ[:, r, nf + 1 + 5 * i:nf + 6 + 5 * i] = J[:, i, :, :5]
         return F.reshape(k, 6 * Np), JJ
 
-    r = newton(fun, X0, tol=opts.tol, maxiter=60, what="train tangency (direct solve of Eqs. 3.18 and 3.22)",
-               where=wpos)
+    r = newton(fun, X0, NewtonOptions(tol=opts.tol, maxiter=60),
+               what="train tangency (direct solve of Eqs. 3.18 and 3.22)", where=wpos)
     X = r.x
     _, x6 = split(X, np.arange(p))
     _set_free(m, free, X[:, :nf], Np)
@@ -241,7 +244,7 @@ def _solve_direct(train, fl, m, x, E, free, opts, wpos):
 ROUNDING_FACTOR = 16.0  # residual terms summed in Eq. (3.18), each rounded to eps |angle| R
 
 
-def scaled_tolerances(train: PlanetaryTrain, phi1: np.ndarray, options: IsostaticOptions) -> IsostaticOptions:
+def scaled_tolerances(train: IsostaticTrain, phi1: np.ndarray, options: IsostaticOptions) -> IsostaticOptions:
     r"""Newton targets no finer than double precision can resolve at the angles reached [mm].
 
     Positions are :math:`R(\phi)\,r` with angles that grow without bound over a long run; rounding
@@ -260,15 +263,15 @@ def scaled_tolerances(train: PlanetaryTrain, phi1: np.ndarray, options: Isostati
     return dataclasses.replace(options, tol=max(options.tol, floor), outer_tol=max(options.outer_tol, 10 * floor))
 
 
-def run_isostatic_tca(train: PlanetaryTrain, phi1, options: IsostaticOptions = IsostaticOptions()) -> IsostaticResult:
+def run_isostatic_tca(train: IsostaticTrain, phi1, options: IsostaticOptions = IsostaticOptions()) -> IsostaticResult:
     """Configuration of the train (centres, carrier, planets, contacting teeth) at the sun angles phi1 [rad]."""
     t0 = time.perf_counter()
-    rigid = _check_mobility(train)
+    rigid = check_mobility(train)
     phi1 = np.asarray(phi1, float).reshape(-1)
     if len(phi1) == 0 or not np.all(np.isfinite(phi1)):
         raise InputError("phi1", phi1[:5].tolist(), "one or more finite sun angles")
     options = scaled_tolerances(train, phi1, options)
-    fl = TrainFlanks.of(train, options.section_z)
+    fl = train.flanks(options.section_z)
     n, Np = len(phi1), train.n_planets
     free = train.constraints.free_centres
     if options.method == "direct" and rigid and Np > 1:

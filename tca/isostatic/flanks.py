@@ -21,6 +21,7 @@ run-out already in ``c`` (:math:`c = o + A\,\boldsymbol\varepsilon`).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -28,7 +29,7 @@ from tca.errors import GeometryError, InputError
 from tca.geometry.gear import Gear
 from tca.geometry.surfaces import HelicoidSurface
 
-__all__ = ["PlanarFlank", "rot2", "REFLECT", "cross2", "perp", "apply", "nearest_tooth"]
+__all__ = ["PlanarFlank", "PlacedTeeth", "TrainFlanks", "rot2", "REFLECT", "cross2", "perp", "apply", "nearest_tooth"]
 
 REFLECT = np.array([[-1.0, 0.0], [0.0, 1.0]])  # D: x -> -x (rot_y(pi) restricted to the plane)
 
@@ -123,3 +124,31 @@ class PlanarFlank:
         g, g1, g2 = self.eval(u)
         Ak = A @ rot2(2 * math.pi * np.asarray(k) / self.teeth)
         return c + apply(Ak, g), apply(Ak, g1), apply(Ak, g2), Ak, g
+
+
+@dataclass(frozen=True, eq=False)
+class PlacedTeeth:
+    """Tooth k (M,) of a flank on a body placed by x -> A x + c (A (M, 2, 2), c (M, 2) [mm]), one per batch member."""
+
+    flank: PlanarFlank
+    A: np.ndarray
+    c: np.ndarray
+    k: np.ndarray
+
+    def place(self, u):
+        """:meth:`PlanarFlank.place` of these teeth at u (M,)."""
+        return self.flank.place(self.A, self.c, self.k, u)
+
+    def take(self, idx) -> "PlacedTeeth":
+        """The members idx."""
+        return PlacedTeeth(self.flank, self.A[idx], self.c[idx], self.k[idx])
+
+
+@dataclass(frozen=True, eq=False)
+class TrainFlanks:
+    """The four flanks in mesh: sun (+1), planet toward the sun (-1), planet toward the ring (+1), ring (-1)."""
+
+    sun: PlanarFlank
+    planet_s: PlanarFlank
+    planet_r: PlanarFlank
+    ring: PlanarFlank

@@ -52,7 +52,7 @@ import numpy as np
 
 from tca.errors import InputError
 from tca.isostatic.flanks import REFLECT, apply, rot2
-from tca.isostatic.train import PlanetaryTrain
+from tca.isostatic.train import IsostaticTrain
 
 __all__ = ["IndexingClosedForm", "indexing_closed_form", "LinearResponse", "linear_response"]
 
@@ -89,7 +89,7 @@ class LinearResponse:
     planet_backlash: np.ndarray  # (n, Np) loop backlash g_i (non-zero only for a rigid hyperstatic train) [mm]
 
 
-def linear_response(train: PlanetaryTrain, phi1) -> LinearResponse:
+def linear_response(train: IsostaticTrain, phi1) -> LinearResponse:
     """Carrier TE and member centres to first order in the errors (involute gears, module docstring)."""
     phi1 = np.asarray(phi1, float).reshape(-1)
     n, Np = len(phi1), train.n_planets

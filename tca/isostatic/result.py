@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from tca.isostatic.dof import DOFCount
-from tca.isostatic.train import PlanetaryTrain
+from tca.isostatic.train import IsostaticTrain
 
 __all__ = ["IsostaticResult", "fit_circle", "dominant_period", "ARCSEC"]
 
@@ -82,7 +82,7 @@ def dominant_period(x: np.ndarray, y: np.ndarray, span: float) -> float | None:
 class IsostaticResult:
     """Configuration of the train at every sun angle."""
 
-    train: PlanetaryTrain
+    train: IsostaticTrain
     options: Any  # tca.isostatic.analysis.IsostaticOptions
     phi1: np.ndarray  # (n,) [rad]
     phi_c: np.ndarray  # (n,) carrier angle [rad]

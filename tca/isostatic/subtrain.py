@@ -33,11 +33,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from tca.isostatic.flanks import REFLECT, PlanarFlank, apply, cross2, nearest_tooth, perp, rot2
-from tca.isostatic.train import PlanetaryTrain
-from tca.numerics.newton import newton
+from tca.isostatic.flanks import REFLECT, PlacedTeeth, PlanarFlank, TrainFlanks, apply, cross2, nearest_tooth, perp, rot2
+from tca.isostatic.train import IsostaticTrain
+from tca.numerics.newton import NewtonOptions, newton
 
-__all__ = ["TrainFlanks", "Members", "Poses", "poses", "subtrain_eval", "backlash_solve", "line_crossing",
+__all__ = ["Members", "Poses", "poses", "subtrain_eval", "backlash_solve", "line_crossing",
            "body_angle_map", "mate_tooth", "corner_gap", "JT_CENTRES", "BODY_SUN", "BODY_CARRIER", "BODY_RING"]
 
 BODY_SUN, BODY_CARRIER, BODY_RING = 0, 1, 2
@@ -46,25 +46,6 @@ BODY_SUN, BODY_CARRIER, BODY_RING = 0, 1, 2
 JT_CENTRES = np.zeros((6, 6))
 JT_CENTRES[0:2, 0:2], JT_CENTRES[0:2, 2:4] = np.eye(2), -np.eye(2)
 JT_CENTRES[3:5, 2:4], JT_CENTRES[3:5, 4:6] = np.eye(2), -np.eye(2)
-
-
-@dataclass(frozen=True, eq=False)
-class TrainFlanks:
-    """The four flanks in mesh: sun (+1), planet toward the sun (-1), planet toward the ring (+1), ring (-1)."""
-
-    sun: PlanarFlank
-    planet_s: PlanarFlank
-    planet_r: PlanarFlank
-    ring: PlanarFlank
-
-    @classmethod
-    def of(cls, train: PlanetaryTrain, z0: float = 0.0) -> "TrainFlanks":
-        key = ("flanks", z0)
-        if key not in train._cache:
-            p = train.planet
-            train._cache[key] = cls(PlanarFlank(train.sun, 1, z0), PlanarFlank(p, -1, z0), PlanarFlank(p, 1, z0),
-                                    PlanarFlank(train.ring, -1, z0))
-        return train._cache[key]
 
 
 @dataclass(eq=False)
@@ -98,7 +79,7 @@ class Poses:
     a: np.ndarray  # planet frame angle phi_2 + pi / N_2 [rad]
 
 
-def poses(train: PlanetaryTrain, fl: TrainFlanks, m: Members, phi2, phic) -> Poses:
+def poses(train: IsostaticTrain, fl: TrainFlanks, m: Members, phi2, phic) -> Poses:
     """Body maps for planet rotations phi2 and carrier angles phic (Eqs. 3.7, 3.12-3.13, 3.16)."""
     As = rot2(m.phi1)
     cs = m.T[:, BODY_SUN] + apply(As, fl.sun.runout)
@@ -114,7 +95,7 @@ def poses(train: PlanetaryTrain, fl: TrainFlanks, m: Members, phi2, phic) -> Pos
     return Poses(As, cs, Ap, cp, Op, Tc, Ar, cr, q, a)
 
 
-def subtrain_eval(train: PlanetaryTrain, fl: TrainFlanks, m: Members, x: np.ndarray, full: bool = False):
+def subtrain_eval(train: IsostaticTrain, fl: TrainFlanks, m: Members, x: np.ndarray, full: bool = False):
     """Residuals F (M, 6) and Jacobian J (M, 6, 6) of Eq. (3.18) (planar); dF/dT is :data:`JT_CENTRES`.
 
     With ``full``, also returns the poses and the world contact data of both meshes.
@@ -175,16 +156,17 @@ def line_crossing(flank: PlanarFlank, A, c, k, P0, nu, u0=None, iters: int = 8):
     return u
 
 
-def backlash_solve(fa: PlanarFlank, Aa, ca, ka, fb: PlanarFlank, Ab, cb, kb, ua0, ub0, tol: float):
-    """Signed distance s along the common normal of tooth ka of flank a and tooth kb of flank b (Eq. 3.19).
+def backlash_solve(a: PlacedTeeth, b: PlacedTeeth, ua0, ub0, tol: float):
+    """Signed distance s along the common normal of the teeth a and b, from guesses ua0, ub0 (M,) (Eq. 3.19).
 
     Returns (u_a, u_b, s, converged, margin) with margin the smaller working-area margin of both points [mm].
     """
+    fa, fb = a.flank, b.flank
 
     def fun(x, idx):
         ua, ub, s = x.T
-        Pa, ta, tau, Aak, ga = fa.place(Aa[idx], ca[idx], ka[idx], ua)
-        Pb, tb, tbu, _, _ = fb.place(Ab[idx], cb[idx], kb[idx], ub)
+        Pa, ta, tau, Aak, ga = a.take(idx).place(ua)
+        Pb, tb, tbu, _, _ = b.take(idx).place(ub)
         _, g1, g2 = fa.eval(ua)
         nl, dnl = fa.normal(g1, g2)
         na, dna = apply(Aak, nl), apply(Aak, dnl)
@@ -200,7 +182,8 @@ def backlash_solve(fa: PlanarFlank, Aa, ca, ka, fb: PlanarFlank, Ab, cb, kb, ua0
         return F, J
 
     x0 = np.stack([ua0, ub0, np.zeros(len(ua0))], -1)
-    r = newton(fun, x0, tol=tol, maxiter=30, raise_on_failure=False, what="backlash of neighbouring teeth")
+    r = newton(fun, x0, NewtonOptions(tol=tol, maxiter=30), raise_on_failure=False,
+               what="backlash of neighbouring teeth")
     ua, ub, s = r.x.T
     ga = fa.eval(ua)[0]
     gb = fb.eval(ub)[0]
@@ -209,7 +192,7 @@ def backlash_solve(fa: PlanarFlank, Aa, ca, ka, fb: PlanarFlank, Ab, cb, kb, ua0
     return ua, ub, s, ok, margin
 
 
-def body_angle_map(train: PlanetaryTrain, P: Poses, body: str):
+def body_angle_map(train: IsostaticTrain, P: Poses, body: str):
     """(c0, sign): a body maps local polar angle t to world angle c0 + sign t about its centre."""
     if body == "sun":
         return np.arctan2(P.As[:, 1, 0], P.As[:, 0, 0]), 1
@@ -218,15 +201,15 @@ def body_angle_map(train: PlanetaryTrain, P: Poses, body: str):
     return np.full(len(P.q), math.pi - train.ring_phase), -1
 
 
-def mate_tooth(train: PlanetaryTrain, flank: PlanarFlank, P: Poses, body: str, centre, target_point):
+def mate_tooth(train: IsostaticTrain, flank: PlanarFlank, P: Poses, body: str, centre, target_point):
     """Tooth of `body` whose flank's pitch point is nearest the world point `target_point`."""
     c0, sg = body_angle_map(train, P, body)
     d = target_point - centre
     return nearest_tooth(c0, sg, flank.pitch_angle, flank.teeth, np.arctan2(d[:, 1], d[:, 0]))
 
 
-def corner_gap(fc: PlanarFlank, Ac, cc, kc, uc, fm: PlanarFlank, Am, cm, km, samples: int = 9, iters: int = 12):
-    """Signed distance of the point u = uc of tooth kc of flank c from the working area of the mate flank.
+def corner_gap(teeth: PlacedTeeth, uc, mate: PlacedTeeth, samples: int = 9, iters: int = 12):
+    """Signed distance of the points u = uc (M,) of `teeth` from the working area of the `mate` teeth.
 
     Negative: the point is inside the mate's tooth. The foot of the normal is searched in the mate's working area
     (nearest of `samples` points, then Newton on (P_c - P_m) . t_m = 0, kept inside the area); where the point has
@@ -234,17 +217,18 @@ def corner_gap(fc: PlanarFlank, Ac, cc, kc, uc, fm: PlanarFlank, Am, cm, km, sam
     Returns (gap [mm], u of the foot on the mate).
     """
     k = len(uc)
-    Pc = fc.place(Ac, cc, kc, uc)[0]
+    fm = mate.flank
+    Pc = teeth.place(uc)[0]
     us = np.linspace(fm.u_form, fm.u_tip, samples)
     rep = lambda a: np.repeat(a, samples, 0)  # noqa: E731
-    Ps = fm.place(rep(Am), rep(cm), rep(km), np.tile(us, k))[0].reshape(k, samples, 2)
+    Ps = fm.place(rep(mate.A), rep(mate.c), rep(mate.k), np.tile(us, k))[0].reshape(k, samples, 2)
     u = us[np.argmin(np.linalg.norm(Ps - Pc[:, None], axis=-1), axis=1)]
     for _ in range(iters):  # foot of the normal from Pc on the mate: (Pc - Pm) . t_m = 0
-        Pm, t, tu, _, _ = fm.place(Am, cm, km, u)
+        Pm, t, tu, _, _ = mate.place(u)
         f = np.einsum("...i,...i", Pc - Pm, t)
         df = np.einsum("...i,...i", Pc - Pm, tu) - np.einsum("...i,...i", t, t)
         u = np.clip(u - f / np.where(np.abs(df) > 1e-12, df, -1e-12), fm.u_form, fm.u_tip)
-    Pm, t, tu, Amk, g = fm.place(Am, cm, km, u)
+    Pm, t, tu, Amk, g = mate.place(u)
     n = apply(Amk, fm.normal(*fm.eval(u)[1:])[0])
     foot = np.abs(np.einsum("...i,...i", Pc - Pm, t)) < 1e-9 * np.linalg.norm(t, axis=-1)
     return np.where(foot, np.einsum("...i,...i", Pc - Pm, n), np.inf), u

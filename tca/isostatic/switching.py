@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from tca.errors import GeometryError
+from tca.isostatic.flanks import PlacedTeeth
 from tca.isostatic.subtrain import (BODY_RING, Members, Poses, backlash_solve, corner_gap, line_crossing, mate_tooth,
                              subtrain_eval)
 
@@ -48,7 +49,8 @@ def switch_pairs(train, fl, m: Members, x, opts, wpos):
         c02, nu2 = np.concatenate([c0, c0]), np.concatenate([nu, nu])
         ua0 = line_crossing(fa, A2a, c2a, ka, c02, nu2)
         ub0 = line_crossing(fb, A2b, c2b, kb, c02, nu2)
-        ua, ub, s, ok, mg = backlash_solve(fa, A2a, c2a, ka, fb, A2b, c2b, kb, ua0, ub0, opts.tol)
+        teeth_a, teeth_b = PlacedTeeth(fa, A2a, c2a, ka), PlacedTeeth(fb, A2b, c2b, kb)
+        ua, ub, s, ok, mg = backlash_solve(teeth_a, teeth_b, ua0, ub0, opts.tol)
         s = np.where(ok, s, np.nan).reshape(2, M).T  # (M, 2): previous, next
         mg = mg.reshape(2, M).T
         okk = ok.reshape(2, M).T
@@ -75,11 +77,10 @@ def switch_pairs(train, fl, m: Members, x, opts, wpos):
         if inval.any():
             rows, cols = np.nonzero(inval)
             idx = rows + cols * M
-            for fo, Ao, co, ko, fm_, Am, cm, km in ((fa, A2a, c2a, ka, fb, A2b, c2b, kb),
-                                                    (fb, A2b, c2b, kb, fa, A2a, c2a, ka)):
+            for own, mate in ((teeth_a, teeth_b), (teeth_b, teeth_a)):
+                fo = own.flank
                 for ulim in (fo.u_form, fo.u_tip):
-                    gap, _ = corner_gap(fo, Ao[idx], co[idx], ko[idx], np.full(len(idx), ulim), fm_, Am[idx],
-                                        cm[idx], km[idx])
+                    gap, _ = corner_gap(own.take(idx), np.full(len(idx), ulim), mate.take(idx))
                     bad = gap < -opts.tie_tol
                     if bad.any():
                         i = int(rows[np.argmax(bad)])

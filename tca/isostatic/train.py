@@ -37,10 +37,11 @@ from dataclasses import dataclass, field, fields
 import numpy as np
 
 from tca.isostatic.dof import DOFCount, TrainConstraints, count_dof
+from tca.isostatic.flanks import PlanarFlank, TrainFlanks
 from tca.errors import GeometryError, InputError
 from tca.geometry.gear import Gear
 
-__all__ = ["PlanetPlacement", "PlanetaryTrain"]
+__all__ = ["PlanetPlacement", "IsostaticTrain"]
 
 
 @dataclass(frozen=True)
@@ -74,7 +75,7 @@ def _vec2(v, name):
 
 
 @dataclass(frozen=True, eq=False)
-class PlanetaryTrain:
+class IsostaticTrain:
     """Sun, N_p planets (equal teeth; each may carry its own run-out) and ring, with floating choices and errors."""
 
     sun: Gear
@@ -199,8 +200,17 @@ class PlanetaryTrain:
         """Planet centres in the carrier frame (Eq. 3.12), (N_p, 2) [mm]."""
         return np.array([[self.r_c + p.radial, p.tangential] for p in self.placements])
 
-    def with_(self, **kw) -> "PlanetaryTrain":
+    def flanks(self, z0: float = 0.0) -> TrainFlanks:
+        """The four flanks in mesh, sections at z = z0 [mm] (built once per train and section)."""
+        key = ("flanks", z0)
+        if key not in self._cache:
+            p = self.planet
+            self._cache[key] = TrainFlanks(PlanarFlank(self.sun, 1, z0), PlanarFlank(p, -1, z0), PlanarFlank(p, 1, z0),
+                                           PlanarFlank(self.ring, -1, z0))
+        return self._cache[key]
+
+    def with_(self, **kw) -> "IsostaticTrain":
         """Copy with some fields replaced."""
         d = {f.name: getattr(self, f.name) for f in fields(self) if f.init}
         d.update(kw)
-        return PlanetaryTrain(**d)
+        return IsostaticTrain(**d)

@@ -20,7 +20,26 @@ import numpy as np
 
 from tca.errors import ConvergenceError
 
-__all__ = ["NewtonResult", "newton"]
+__all__ = ["NewtonOptions", "PreferredPoint", "NewtonResult", "newton"]
+
+
+@dataclass(frozen=True)
+class NewtonOptions:
+    """Stopping rule and step control of a batched solve."""
+
+    tol: float = 1e-11  # converged when max|F| < tol (F in mm for the TCA systems)
+    maxiter: int = 40
+    rcond: float = 1e-11  # singular values below rcond times the largest are dropped from a step
+    max_backtracks: int = 12  # halvings of a step in the line search
+
+
+@dataclass(frozen=True, eq=False)
+class PreferredPoint:
+    """The point x_pref = point(x, idx) (k, m) that selects the solution of a rank-deficient system, weighted by
+    ``weights`` (m,) (default 1e-3 for every unknown), for the first phase of the module docstring."""
+
+    point: Callable[[np.ndarray, np.ndarray], np.ndarray]
+    weights: np.ndarray | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -41,8 +60,19 @@ def _lstsq(A, b, rcond):
     return np.einsum("...ji,...j,...kj,...k->...i", Vt, inv, U, b)
 
 
-def _iterate(x, idx_all, fun, res_fn, step_fn, stop_fn, maxiter, its, max_backtracks=12, skip=None):
-    """Damped iterations on members where stop_fn is False; returns (F, J, merit) of the final x."""
+@dataclass(frozen=True)
+class _Phase:
+    """One phase of the solve: merit(x, F, idx) (k,), step(x, F, J, idx) (k, m) and stop(F, merit) (k,) bool."""
+
+    merit: Callable
+    step: Callable
+    stop: Callable
+
+
+def _iterate(x, fun, phase: _Phase, maxiter, its, max_backtracks, skip=None):
+    """Damped iterations on members where phase.stop is False; returns (F, J, merit) of the final x."""
+    idx_all = np.arange(len(x))
+    res_fn, step_fn, stop_fn = phase.merit, phase.step, phase.stop
     F, J = fun(x, idx_all)
     merit = res_fn(x, F, idx_all)
     history = [merit.copy()]
@@ -97,37 +127,36 @@ def _iterate(x, idx_all, fun, res_fn, step_fn, stop_fn, maxiter, its, max_backtr
 def newton(
     fun: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]],
     x0: np.ndarray,
+    options: NewtonOptions = NewtonOptions(),
     *,
-    tol: float = 1e-11,
-    maxiter: int = 40,
-    rcond: float = 1e-11,
+    prefer: PreferredPoint | None = None,
     raise_on_failure: bool = True,
-    prefer: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
-    prefer_weights: np.ndarray | None = None,
-    max_backtracks: int = 12,
     what: str = "contact",
     where: Callable[[int], str] | None = None,
 ) -> NewtonResult:
     """Solve fun(x, idx) = (F (k, m), J (k, m, m)) = 0 for a batch x0 (n, m).
 
-    ``idx`` tells ``fun`` which members of the batch it is given. Converged when max|F| < tol
-    (F in mm for the TCA systems). ``prefer(x, idx)`` returns the preferred point x_pref (k, m),
-    weighted by ``prefer_weights`` (m,), for the first phase described in the module docstring.
+    ``idx`` tells ``fun`` which members of the batch it is given. Converged when max|F| < ``options.tol``
+    (F in mm for the TCA systems). ``prefer`` selects the solution of (nearly) rank-deficient members in a
+    first phase (module docstring). With ``raise_on_failure`` a member that does not converge raises
+    :class:`ConvergenceError` naming ``what`` and ``where(i)`` (default: the batch member).
     """
+    tol, maxiter, rcond, max_backtracks = options.tol, options.maxiter, options.rcond, options.max_backtracks
     x = np.array(x0, dtype=float, copy=True)
     n = len(x)
     idx_all = np.arange(n)
     its = np.zeros(n, dtype=int)
 
     if prefer is not None:
-        w = np.asarray(prefer_weights if prefer_weights is not None else np.full(x.shape[1], 1e-3), float)
+        w = np.asarray(prefer.weights if prefer.weights is not None else np.full(x.shape[1], 1e-3), float)
+        prefer_point = prefer.point
 
         def aug_merit(xx, F, ia):
-            return np.sqrt(np.sum(F**2, -1) + np.sum((w * (xx - prefer(xx, ia))) ** 2, -1))
+            return np.sqrt(np.sum(F**2, -1) + np.sum((w * (xx - prefer_point(xx, ia))) ** 2, -1))
 
         def gn_step(xx, F, J, ia):
             A = np.concatenate([J, np.broadcast_to(np.diag(w), (len(ia),) + (len(w), len(w)))], 1)
-            b = np.concatenate([-F, -w * (xx - prefer(xx, ia))], 1)
+            b = np.concatenate([-F, -w * (xx - prefer_point(xx, ia))], 1)
             return _lstsq(A, b, rcond)
 
         def gn_stop(F, m):
@@ -141,7 +170,7 @@ def newton(
             sv = np.linalg.svd(J0[finite], compute_uv=False)
             regular[finite] = sv[:, -1] > 1e-7 * sv[:, 0]
         if not regular.all():
-            _iterate(x, idx_all, fun, aug_merit, gn_step, gn_stop, maxiter // 2, its, max_backtracks, skip=regular)
+            _iterate(x, fun, _Phase(aug_merit, gn_step, gn_stop), maxiter // 2, its, max_backtracks, skip=regular)
 
     def plain_merit(xx, F, ia):
         return np.linalg.norm(F, axis=-1)
@@ -152,7 +181,7 @@ def newton(
     def nt_stop(F, m):
         return np.abs(F).max(-1) < tol
 
-    F, _, _ = _iterate(x, idx_all, fun, plain_merit, nt_step, nt_stop, maxiter, its, max_backtracks)
+    F, _, _ = _iterate(x, fun, _Phase(plain_merit, nt_step, nt_stop), maxiter, its, max_backtracks)
     res = np.abs(F).max(-1)
     converged = res < tol
     if raise_on_failure and not converged.all():

@@ -43,7 +43,7 @@ from tca.pair.bounded import bounded_pass
 from tca.pair.reference import solve_reference_pair
 from tca.pair.relief import relief_pass
 from tca.pair.runout import candidate_table, has_runout
-from tca.pair.result import ContactKind, PairTCAResult, ReferencePairSolution, TCAOptions, _flanks, ellipse_outlines
+from tca.pair.result import ContactKind, PairTCAResult, ReferencePairSolution, TCAOptions, ellipse_outlines
 from tca.pair.transitions import Branches, extremes, transitions
 from tca.units import ARCSEC
 
@@ -62,7 +62,7 @@ __all__ = ["TCAOptions", "ContactKind", "ReferencePairSolution", "PairTCAResult"
 def run_pair_tca(pair: GearPair, opts: TCAOptions = TCAOptions()) -> PairTCAResult:
     """TCA of a gear pair over opts.cycles cycles of meshing; see the module docstring."""
     t0 = time.perf_counter()
-    f1, f2 = _flanks(pair)
+    f1, f2 = pair.flanks()
     ref = solve_reference_pair(pair, opts, bounded="none")
     s = opts.steps_per_cycle
     ratio = pair.ratio
@@ -126,7 +126,7 @@ def run_pair_tca(pair: GearPair, opts: TCAOptions = TCAOptions()) -> PairTCAResu
     if has_runout(pair):
         X, residual, where = x_all[rows, a], res_all[rows, a], where_all[rows, a]
         # contact points with each pair's own placement of the eccentric bodies
-        fs = [_flanks(turned[int(k)]) for k in kk]
+        fs = [turned[int(k)].flanks() for k in kk]
         w1 = _stack_points([f[0].world(X[i:i + 1, 0], X[i:i + 1, 1], ref.phi1[jr[i:i + 1]])[0] for i, f in enumerate(fs)])
         w2 = _stack_points([f[1].world(X[i:i + 1, 2], X[i:i + 1, 3], X[i:i + 1, 4])[0] for i, f in enumerate(fs)])
         l1 = _stack_points([f[0].world(X[i:i + 1, 0], X[i:i + 1, 1], ref.phi1[jr[i:i + 1]])[1] for i, f in enumerate(fs)])

@@ -14,11 +14,11 @@ import numpy as np
 
 from tca.contact.systems import PlacedFlank, corner_system, edge_edge_system, edge_system
 from tca.errors import ConvergenceError
-from tca.numerics.newton import NewtonResult, newton
+from tca.numerics.newton import NewtonOptions, NewtonResult, newton
 from tca.pair.gear_pair import GearPair
-from tca.pair.result import ContactKind, ReferencePairSolution, TCAOptions, _flanks
+from tca.pair.result import ContactKind, ReferencePairSolution, TCAOptions
 
-__all__ = ["bounded_pass", "boundary_curve", "onto_other_flank"]
+__all__ = ["bounded_pass", "boundary_curve", "onto_other_flank", "tip_points"]
 
 
 def bounded_pass(pair: GearPair, ref: "ReferencePairSolution", sel: np.ndarray, opts: TCAOptions) -> None:
@@ -26,7 +26,7 @@ def bounded_pass(pair: GearPair, ref: "ReferencePairSolution", sel: np.ndarray, 
     sel = np.asarray(sel, int)
     if not len(sel):
         return
-    f1, f2 = _flanks(pair)
+    f1, f2 = pair.flanks()
     ratio = pair.ratio
     phis, X, js = ref.phi1, ref.x, ref.j
     tan_ok = ref.tangency
@@ -69,9 +69,9 @@ def _boundary_param(flank: PlacedFlank, b: int):
     """Range (t0, t1) of the parameter along boundary b, and a map t -> (u, v) on it."""
     ar = flank.gear.area(flank.side)
     if b == 1:  # tip: parameter is z
-        return (ar.z_min, ar.z_max), lambda t: _tip_points(flank, np.full(np.shape(t), ar.u_tip), t)
+        return (ar.z_min, ar.z_max), lambda t: tip_points(flank, np.full(np.shape(t), ar.u_tip), t)
     zb = ar.z_max if b == 2 else ar.z_min
-    u_end = _tip_points(flank, np.array([ar.u_tip]), np.array([zb]))[0, 0]
+    u_end = tip_points(flank, np.array([ar.u_tip]), np.array([zb]))[0, 0]
     return (ar.u_form, u_end), lambda t: np.stack([np.asarray(t, float), np.full(np.shape(t), zb)], -1)
 
 
@@ -94,7 +94,8 @@ def onto_other_flank(f1: PlacedFlank, f2: PlacedFlank, fl: int, uv: np.ndarray, 
     loc = np.einsum("nji,nj->ni", Rf, pw.r - tf)
     u_of_r = u_of_r or _u_of_radius(fo)
     g = np.stack([u_of_r(np.hypot(loc[:, 0], loc[:, 1])), loc[:, 2], ph2], -1)
-    rr = newton(corner_system(f1, f2, ph1, fl, uv), g, tol=tol, maxiter=15, raise_on_failure=False, max_backtracks=6)
+    rr = newton(corner_system(f1, f2, ph1, fl, uv), g, NewtonOptions(tol=tol, maxiter=15, max_backtracks=6),
+                raise_on_failure=False)
     return rr, fo.constraints(fo.surface.evaluate(rr.x[:, 0], rr.x[:, 1]), rr.x[:, 0])
 
 
@@ -198,7 +199,7 @@ def _bounded_contacts(pair, f1, f2, phis, sel, phi2_guess, opts, samples: int = 
                 else:
                     g[:, :2], g[:, 2:4], bb = oth[:, :2], uvi, (b2, b)
                 g[:, 4] = oth[:, 2]
-                ree = newton(edge_edge_system(f1, f2, phis[sel][pi], *bb), g, tol=opts.tol, maxiter=40,
+                ree = newton(edge_edge_system(f1, f2, phis[sel][pi], *bb), g, NewtonOptions(tol=opts.tol, maxiter=40),
                              raise_on_failure=False)
                 xe = ree.x
                 c1 = f1.constraints(f1.surface.evaluate(xe[:, 0], xe[:, 1]), xe[:, 0])
@@ -232,8 +233,8 @@ def _bounded_contacts(pair, f1, f2, phis, sel, phi2_guess, opts, samples: int = 
             cand_res = res3[np.arange(n), best]
             if interior.any():
                 ii = np.flatnonzero(interior)
-                re = newton(edge_system(f1, f2, phis[sel][ii], fl, b), cand_x[ii], tol=opts.tol, maxiter=40,
-                            raise_on_failure=False)
+                re = newton(edge_system(f1, f2, phis[sel][ii], fl, b), cand_x[ii],
+                            NewtonOptions(tol=opts.tol, maxiter=40), raise_on_failure=False)
                 xe = re.x
                 c1 = f1.constraints(f1.surface.evaluate(xe[:, 0], xe[:, 1]), xe[:, 0])
                 c2 = f2.constraints(f2.surface.evaluate(xe[:, 2], xe[:, 3]), xe[:, 2])
@@ -252,7 +253,7 @@ def _bounded_contacts(pair, f1, f2, phis, sel, phi2_guess, opts, samples: int = 
     return out_x, out_kind, out_where, out_res
 
 
-def _tip_points(fi, u, v):
+def tip_points(fi, u, v):
     """(u, v) on the tip boundary of flank fi at axial positions v (vectorized Newton in u)."""
     from tca.contact.systems import boundary_derivs
 

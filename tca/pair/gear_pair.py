@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from tca.contact.systems import PlacedFlank
 from tca.errors import GeometryError, InputError
 from tca.geometry.gear import Gear
 from tca.numerics.transforms import Mount, rot_x, rot_y
@@ -183,6 +184,11 @@ class GearPair:
         m2 = Mount(c, R @ m2.R0, ph2)  # turned about axes through gear 2's centre
         m2 = Mount(m2.origin + np.array([0.0, ms.d_ex, 0.0]) + ms.d_axial * m2.R0[:, 2], m2.R0, ph2)
         return m1, m2
+
+    def flanks(self) -> tuple[PlacedFlank, PlacedFlank]:
+        """(flank 1, flank 2) in contact, reference teeth, placed by :meth:`mounts`."""
+        m1, m2 = self.mounts()
+        return PlacedFlank(self.gear1, self.side1, m1), PlacedFlank(self.gear2, self.side2, m2)
 
     def with_misalignment(self, **kw) -> "GearPair":
         """Copy with some misalignment components replaced."""

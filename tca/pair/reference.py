@@ -15,13 +15,13 @@ from scipy.interpolate import CubicSpline
 
 from tca.contact.systems import PlacedFlank, tangency_system
 from tca.errors import ConvergenceError
-from tca.numerics.newton import newton
+from tca.numerics.newton import NewtonOptions, PreferredPoint, newton
 from tca.pair.gear_pair import GearPair
 from tca.pair.bounded import bounded_pass
 from tca.pair.relief import relief_pass
-from tca.pair.result import ContactKind, ReferencePairSolution, TCAOptions, _flanks
+from tca.pair.result import ContactKind, ReferencePairSolution, TCAOptions
 
-__all__ = ["solve_reference_pair", "classify_tangency"]
+__all__ = ["solve_reference_pair", "classify_tangency", "in_domain"]
 
 
 def _contact_ratio(pair: GearPair) -> float:
@@ -51,9 +51,9 @@ def _start(pair: GearPair, f1: PlacedFlank):
     return phi1_0
 
 
-def _solve_one(fun, x0, tol, prefer, maxiter=20):
-    res = newton(fun, x0[None, :], tol=tol, maxiter=maxiter, raise_on_failure=False, prefer=prefer,
-                 prefer_weights=PREFER_WEIGHTS, max_backtracks=8)
+def _solve_one(fun, x0, tol, prefer: PreferredPoint, maxiter=20):
+    res = newton(fun, x0[None, :], NewtonOptions(tol=tol, maxiter=maxiter, max_backtracks=8), prefer=prefer,
+                 raise_on_failure=False)
     return res.x[0], bool(res.converged[0]), float(res.residual[0]), int(res.iterations[0])
 
 
@@ -98,7 +98,7 @@ def _constraints(f1, f2, x):
     return np.stack([f1.constraints(l1, x[:, 0]), f2.constraints(l2, x[:, 2])], 1)
 
 
-def _in_domain(f1, f2, x) -> np.ndarray:
+def in_domain(f1, f2, x) -> np.ndarray:
     """Tangency points within the parameter domains of both surfaces (not run off to infinity)."""
     ok = np.isfinite(x).all(-1)
     for f, (iu, iv) in ((f1, (0, 1)), (f2, (2, 3))):
@@ -119,7 +119,7 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
     With ``bounded="all"`` every position whose tangency is not inside both working areas gets an
     edge/corner search; with ``"none"`` only the tangency pass is done (see :func:`bounded_pass`).
     """
-    f1, f2 = _flanks(pair)
+    f1, f2 = pair.flanks()
     ratio = pair.ratio
     pitch = 2 * math.pi / pair.gear1.teeth
     h = pitch / opts.steps_per_cycle
@@ -130,7 +130,7 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
     js = np.arange(-J, J + 1)
     phis = phi1_0 + js * h
     n = len(js)
-    prefer = _centre_preference(f1)
+    prefer = PreferredPoint(_centre_preference(f1), PREFER_WEIGHTS)
     X = np.full((n, 5), np.nan)
     tan_ok = np.zeros(n, bool)
     beyond = np.zeros(n, bool)  # past the point where the pair left its mesh
@@ -146,7 +146,7 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
     xs, conv, res, its = _solve_one(tangency_system(f1, f2, np.array([phi1_0])), x0, opts.tol, prefer, 60)
     total_its += its
     i0 = J
-    if conv and _in_domain(f1, f2, xs[None])[0]:
+    if conv and in_domain(f1, f2, xs[None])[0]:
         X[i0], tan_ok[i0] = xs, True
     c = opts.coarse_every
     block = 6
@@ -170,17 +170,18 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
                 else:
                     coef = np.polyfit(js[known], X[known], deg)
                     guess = np.stack([np.polyval(coef[:, k], js[targets]) for k in range(5)], -1)
-                r = newton(tangency_system(f1, f2, phis[targets]), guess, tol=opts.tol, maxiter=20,
-                           raise_on_failure=False, prefer=prefer, prefer_weights=PREFER_WEIGHTS, max_backtracks=8)
+                r = newton(tangency_system(f1, f2, phis[targets]), guess,
+                           NewtonOptions(tol=opts.tol, maxiter=20, max_backtracks=8), prefer=prefer,
+                           raise_on_failure=False)
                 total_its += int(r.iterations.sum())
-                good = r.converged & _in_domain(f1, f2, r.x)
+                good = r.converged & in_domain(f1, f2, r.x)
                 for q, i in enumerate(targets):
                     if not good[q]:
                         # retry once from the last solution; then the pair has left its mesh (or raise)
                         xs, conv, res, its = _solve_one(tangency_system(f1, f2, np.array([phis[i]])), X[hist[-1]],
                                                         opts.tol, prefer, maxiter=10)
                         total_its += its
-                        if not (conv and _in_domain(f1, f2, xs[None])[0]):
+                        if not (conv and in_domain(f1, f2, xs[None])[0]):
                             if deep(X[hist[-1]]):
                                 raise ConvergenceError("pair TCA (tangency)", f"phi1 = {math.degrees(phis[i]):.6f} deg",
                                                        res, its)
@@ -217,10 +218,10 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
                 guess = CubicSpline(js[coarse], X[coarse], axis=0)(js[fine])
             else:
                 guess = np.stack([np.interp(js[fine], js[coarse], X[coarse][:, k]) for k in range(5)], -1)
-            r = newton(tangency_system(f1, f2, phis[fine]), guess, tol=opts.tol, maxiter=40, raise_on_failure=False,
-                       prefer=prefer, prefer_weights=PREFER_WEIGHTS)
+            r = newton(tangency_system(f1, f2, phis[fine]), guess, NewtonOptions(tol=opts.tol, maxiter=40),
+                       prefer=prefer, raise_on_failure=False)
             total_its += int(r.iterations.sum())
-            good = r.converged & _in_domain(f1, f2, r.x)
+            good = r.converged & in_domain(f1, f2, r.x)
             X[fine[good]], tan_ok[fine[good]] = r.x[good], True
             for q in np.flatnonzero(~good):
                 i = fine[q]
@@ -229,7 +230,7 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
                     continue  # near the end of the mesh: the bounded search takes over
                 # second chance from the nearest solved neighbour: a failure here is an error
                 xs, conv, res, its = _solve_one(tangency_system(f1, f2, np.array([phis[i]])), X[nb], opts.tol, prefer)
-                if not (conv and _in_domain(f1, f2, xs[None])[0]):
+                if not (conv and in_domain(f1, f2, xs[None])[0]):
                     raise ConvergenceError("pair TCA (tangency)", f"phi1 = {math.degrees(phis[i]):.6f} deg", res, its)
                 X[i], tan_ok[i] = xs, True
 

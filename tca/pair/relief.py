@@ -32,13 +32,15 @@ later than the true first touch by at most the sampling error of the second leve
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from tca.contact.systems import edge_edge_system, edge_system, tangency_system
-from tca.numerics.newton import newton
+from tca.numerics.newton import NewtonOptions, newton
 from tca.pair.gear_pair import GearPair
-from tca.pair.bounded import _tip_points, onto_other_flank
-from tca.pair.result import ContactKind, ReferencePairSolution, TCAOptions, _flanks
+from tca.pair.bounded import onto_other_flank, tip_points
+from tca.pair.result import ContactKind, ReferencePairSolution, TCAOptions
 
 __all__ = ["relief_pass", "RIDGE_Z_MAX", "RIDGE_Z_MIN"]
 
@@ -81,7 +83,7 @@ def _candidates(f1, f2, fl: int, phi1, ph2g, opts, levels: int, samples: int):
     lev = _levels(fi, levels)
     zl = np.array([z for z, _ in lev])
     code_l = np.array([c for _, c in lev])
-    u_tip = _tip_points(fi, np.full(len(zl), ar.u_tip), zl)[:, 0]
+    u_tip = tip_points(fi, np.full(len(zl), ar.u_tip), zl)[:, 0]
     t = np.linspace(0.0, 1.0, samples)
     U = ar.u_form + (u_tip - ar.u_form)[:, None] * t  # (levels, samples)
     uv = np.broadcast_to(np.stack([U, np.broadcast_to(zl[:, None], U.shape)], -1).reshape(1, -1, 2), (n, U.size, 2))
@@ -105,12 +107,23 @@ def _candidates(f1, f2, fl: int, phi1, ph2g, opts, levels: int, samples: int):
     return val, x, code_l[li], end
 
 
+@dataclass(frozen=True, eq=False)
+class _Touch:
+    """The best sampled touch of relieved flank `flank` (1 or 2) at one position (:func:`_candidates`)."""
+
+    flank: int
+    x: np.ndarray  # (5,) u1, v1, u2, v2, phi2
+    phi2: float  # [rad]
+    ridge: int  # ridge code (RIDGE_Z_MAX, RIDGE_Z_MIN), 0 off the ridge
+    end: int  # -1 inside the sampled line, 0 at the fillet limit, 1 at the tip
+
+
 def relief_pass(pair: GearPair, ref: ReferencePairSolution, opts: TCAOptions, levels: int = 8,
                 samples: int = 11) -> tuple[int, int]:
     """Replace the contact of positions where a relieved zone or a ridge touches first (in place).
 
     Returns (positions replaced, of which kept as sampled points: no refinement converged)."""
-    f1, f2 = _flanks(pair)
+    f1, f2 = pair.flanks()
     flanks = (f1, f2)
     relieved = [fl for fl in (1, 2) if flanks[fl - 1].gear.end_relief is not None]
     if not relieved:
@@ -140,12 +153,13 @@ def relief_pass(pair: GearPair, ref: ReferencePairSolution, opts: TCAOptions, le
             val, x, code, end = (c[q] for c in cands[fl])
             if not np.isfinite(val):
                 continue
-            res = _settle(f1, f2, ref.phi1[i], x, fl, int(code), int(end), val, opts)
+            touch = _Touch(fl, x, val, int(code), int(end))
+            res = _settle(f1, f2, ref.phi1[i], touch, touch.x, opts)
             if not res[4] and done[fl]:  # second chance: from the refined contact of the nearest position
                 nb = min(done[fl], key=lambda j: abs(j - i))
                 x0 = done[fl][nb].copy()
                 x0[4] += ratio * (ref.phi1[i] - ref.phi1[nb])
-                again = _settle(f1, f2, ref.phi1[i], x0, fl, int(code), int(end), val, opts)
+                again = _settle(f1, f2, ref.phi1[i], touch, x0, opts)
                 res = again if again[4] else res
             if res[4]:
                 done[fl][i] = res[0]
@@ -158,8 +172,8 @@ def relief_pass(pair: GearPair, ref: ReferencePairSolution, opts: TCAOptions, le
     return replaced, sampled
 
 
-def _settle(f1, f2, phi1: float, x0: np.ndarray, fl: int, code: int, end: int, sampled: float, opts: TCAOptions):
-    """The contact near a sampled touch x0 of relieved flank fl: (x, kind, where, residual, refined).
+def _settle(f1, f2, phi1: float, touch: _Touch, x0: np.ndarray, opts: TCAOptions):
+    """The contact near a sampled touch of a relieved flank, refined from x0: (x, kind, where, residual, refined).
 
     The ridge of a linear relief meeting the tip or the fillet limit is a corner, exact as sampled; the
     ridge elsewhere, or the tip / fillet limit across a relieved zone, is an edge (edge equations);
@@ -170,6 +184,7 @@ def _settle(f1, f2, phi1: float, x0: np.ndarray, fl: int, code: int, end: int, s
     on both flanks (its projection converged), so it is a touch, at most the sampling error later than
     the first one.
     """
+    fl, code, end, sampled = touch.flank, touch.ridge, touch.end, touch.phi2
     ridge = bool(code) and (f1, f2)[fl - 1].gear.end_relief.power == 1
     if ridge and end >= 0:
         return x0, ContactKind.CORNER, 100 * fl + 10 * code + (9 if end else 0), 0.0, True
@@ -203,7 +218,7 @@ def _refine(f1, f2, system, x0: np.ndarray, on: set, opts: TCAOptions):
     boundaries `on` = {(flank, boundary)} it lies on excepted), (x, residual, (flank, boundary)) if it
     converged outside exactly one boundary, (None, nan, None) otherwise."""
     with np.errstate(divide="ignore", invalid="ignore"):
-        r = newton(system, x0[None], tol=opts.tol, maxiter=40, raise_on_failure=False)
+        r = newton(system, x0[None], NewtonOptions(tol=opts.tol, maxiter=40), raise_on_failure=False)
     xr = r.x[0]
     if not (r.converged[0] and r.residual[0] <= opts.max_residual):
         return None, float("nan"), None

@@ -8,7 +8,6 @@ from enum import IntEnum
 
 import numpy as np
 
-from tca.contact.systems import PlacedFlank
 from tca.errors import InputError
 from tca.pair.gear_pair import GearPair
 from tca.units import ARCSEC
@@ -157,7 +156,7 @@ def ellipse_outlines(result: PairTCAResult, which: int, npts: int = 48) -> np.nd
     NaN where there is no ellipse (edge contact) or where it is unbounded (line contact).
     """
     pair = result.pair
-    f1, f2 = _flanks(pair)
+    f1, f2 = pair.flanks()
     n = len(result.phi1)
     out = np.full((n, npts, 3), np.nan)
     ok = np.isfinite(result.ellipse_a) & np.isfinite(result.ellipse_b)
@@ -183,9 +182,3 @@ def ellipse_outlines(result: PairTCAResult, which: int, npts: int = 48) -> np.nd
     R, _, tt, _ = flank.frame(phi)
     out[ok] = np.einsum("nji,nkj->nki", R, pts - tt[:, None, :])
     return out
-
-
-
-def _flanks(pair: GearPair):
-    m1, m2 = pair.mounts()
-    return PlacedFlank(pair.gear1, pair.side1, m1), PlacedFlank(pair.gear2, pair.side2, m2)

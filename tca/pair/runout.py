@@ -34,11 +34,12 @@ import numpy as np
 
 from tca.contact.systems import tangency_system
 from tca.errors import ConvergenceError
-from tca.numerics.newton import newton
+from tca.numerics.newton import NewtonOptions, newton
 from tca.pair.gear_pair import GearPair
 from tca.pair.bounded import bounded_pass
+from tca.pair.reference import classify_tangency, in_domain  # the reference pair's classification
 from tca.pair.relief import relief_pass
-from tca.pair.result import ContactKind, ReferencePairSolution, TCAOptions, _flanks
+from tca.pair.result import ContactKind, ReferencePairSolution, TCAOptions
 
 __all__ = ["has_runout", "turned_pair", "solve_candidate_pair", "CandidateTable", "candidate_table"]
 
@@ -75,18 +76,17 @@ def solve_candidate_pair(pair: GearPair, ref: ReferencePairSolution, k: int, idx
     ``ref`` is the reference pair of the pair *without* turned run-out (its solution is the
     Newton guess); the returned solution lives on the same grid as ``ref``.
     """
-    from tca.pair.reference import _in_domain, classify_tangency  # the reference pair's classification
-
     pk = turned_pair(pair, k)
-    f1, f2 = _flanks(pk)
+    f1, f2 = pk.flanks()
     n = len(ref.j)
     idx = np.asarray(idx, int)
     X = np.full((n, 5), np.nan)
     tan_ok = np.zeros(n, bool)
     t = idx[ref.tangency[idx]]
     if len(t):
-        r = newton(tangency_system(f1, f2, ref.phi1[t]), ref.x[t], tol=opts.tol, maxiter=40, raise_on_failure=False)
-        good = r.converged & _in_domain(f1, f2, r.x)
+        r = newton(tangency_system(f1, f2, ref.phi1[t]), ref.x[t], NewtonOptions(tol=opts.tol, maxiter=40),
+                   raise_on_failure=False)
+        good = r.converged & in_domain(f1, f2, r.x)
         X[t[good]], tan_ok[t[good]] = r.x[good], True
     kind = np.zeros(n, int)
     phi2 = np.full(n, -np.inf)

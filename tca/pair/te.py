@@ -47,7 +47,6 @@ from typing import NamedTuple
 
 import numpy as np
 
-from tca.contact.systems import PlacedFlank
 from tca.contact.ellipse import contact_ellipse
 from tca.errors import GeometryError, InputError
 from tca.pair.gear_pair import GearPair
@@ -269,8 +268,8 @@ def mesh_contact(result: PairTCAResult, phi: float) -> MeshContact:
     else:
         x, kind = ref.x[i0].copy(), int(ref.kind[i0])
     phi2 = pair.ratio * phi + te
-    m1, m2 = pair.mounts()
-    f1, f2 = PlacedFlank(pair.gear1, pair.side1, m1), PlacedFlank(pair.gear2, pair.side2, m2)
+    f1, f2 = pair.flanks()
+    m1, m2 = f1.mount, f2.mount
     w1, _, _ = f1.world(np.array([x[0]]), np.array([x[1]]), np.array([phi - k * p1]))
     w2, _, _ = f2.world(np.array([x[2]]), np.array([x[3]]), np.array([phi2 - k * p2]))
     _, _, ang, lam = contact_ellipse(w1, w2, 1.0, m1.axis[None, :])
@@ -349,8 +348,8 @@ def path_of_contact(pair: GearPair) -> PathOfContact:
     t_c = rb1 * math.tan(al)
     # the reference tooth's flank at the operating pitch radius, z = 0, in its gear frame
     r_w = rb1 / c
-    u = g1._u_at_radius(pair.side1, r_w)
-    gp = g1._profile(pair.side1, np.array(u))[0]
+    u = g1.u_at_radius(pair.side1, r_w)
+    gp = g1.profile(pair.side1, np.array(u))[0]
     th = math.atan2(float(gp[1]), float(gp[0]))
     m1, _ = pair.mounts()
     cw = m1.R0.T @ (np.array([r_w, 0.0, 0.0]) - m1.origin)

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from tca.contact.systems import tangency_system
-from tca.numerics.newton import newton
+from tca.numerics.newton import NewtonOptions, newton
 from tca.pair.result import ContactKind
 
 __all__ = ["Branches", "transitions", "extremes"]
@@ -79,7 +79,7 @@ def transitions(pair, flanks: tuple, ref, opts, br: Branches, exact: bool = True
         jl = np.clip(np.floor(jf).astype(int), 0, len(ref.j) - 2)
         w = (jf - jl)[:, None]
         guess = ref.x[jl] * (1 - w) + ref.x[jl + 1] * w
-        r = newton(tangency_system(f1, f2, phr), guess, tol=opts.tol, maxiter=30, raise_on_failure=False)
+        r = newton(tangency_system(f1, f2, phr), guess, NewtonOptions(tol=opts.tol, maxiter=30), raise_on_failure=False)
         te, conv = r.x[:, 4] - ratio * phr, r.converged
         m = len(phi)
         return te[:m], conv[:m], te[m:], conv[m:]

@@ -2,8 +2,9 @@
 twin subgear drives, the integrated TE and the regulation of backlash by axial displacement of planets.
 """
 
-from tca.planetary.train import PlanetaryTrain, ShaftErrors
+from tca.planetary.train import DoubleHelicalTrain, ShaftErrors
 from tca.planetary.subgear import SubgearTE, run_subgear_tca
-from tca.planetary.regulation import TrainRegulation, regulate_train, twin_te, integrated_te
+from tca.planetary.regulation import RegulationOptions, TrainRegulation, regulate_train, twin_te, integrated_te
 
-__all__ = ["PlanetaryTrain", "ShaftErrors", "SubgearTE", "run_subgear_tca", "TrainRegulation", "regulate_train", "twin_te", "integrated_te"]
+__all__ = ["DoubleHelicalTrain", "ShaftErrors", "SubgearTE", "run_subgear_tca", "RegulationOptions", "TrainRegulation",
+           "regulate_train", "twin_te", "integrated_te"]

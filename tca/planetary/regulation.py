@@ -40,11 +40,11 @@ import numpy as np
 
 from tca.errors import ConvergenceError, InputError
 from tca.pair.analysis import ARCSEC, TCAOptions
-from tca.planetary.train import PlanetaryTrain, ShaftErrors, dz_first_order
+from tca.planetary.train import DoubleHelicalTrain, ShaftErrors, dz_first_order
 from tca.planetary.subgear import SubgearTE, periodic_peak, phi1_grid, run_subgear_tca
 
-__all__ = ["TwinTE", "TrainTE", "MemberRegulation", "TrainRegulation", "periodic_peak", "twin_te", "integrated_te",
-           "nominal_peak", "regulate_member", "regulate_train", "member_d_ex"]
+__all__ = ["TwinTE", "TrainTE", "RegulationOptions", "MemberRegulation", "TrainRegulation", "periodic_peak", "twin_te",
+           "integrated_te", "nominal_peak", "regulate_member", "regulate_train", "member_d_ex"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -69,12 +69,12 @@ class TwinTE:
         return periodic_peak(self.te)
 
 
-def member_d_ex(train: PlanetaryTrain, member: str, errors: ShaftErrors) -> float:
+def member_d_ex(train: DoubleHelicalTrain, member: str, errors: ShaftErrors) -> float:
     """Tangential displacement of a member's centre, in the sense of ΔE_x [mm] (Δγ about the shaft centre)."""
     return errors.d_ex + train.member_sign(member) * train.member_offset * math.sin(errors.d_gamma)
 
 
-def twin_te(train: PlanetaryTrain, i: int, errors: ShaftErrors = ShaftErrors(), dz=(0.0, 0.0),
+def twin_te(train: DoubleHelicalTrain, i: int, errors: ShaftErrors = ShaftErrors(), dz=(0.0, 0.0),
             opts: TCAOptions = TCAOptions(), cache: dict | None = None, mirror: bool = True) -> TwinTE:
     """Twin drive of shaft i at axial regulations dz = (ΔZ_a, ΔZ_b) [mm]; b mirrored when allowed."""
     phi1 = phi1_grid(train, opts)
@@ -146,9 +146,18 @@ def integrated_te(twins) -> TrainTE:
     return TrainTE(twins)
 
 
-def nominal_peak(train: PlanetaryTrain, opts: TCAOptions = TCAOptions(), cache: dict | None = None) -> float:
+def nominal_peak(train: DoubleHelicalTrain, opts: TCAOptions = TCAOptions(), cache: dict | None = None) -> float:
     """Maximum of Δφ3 of an error-free member at its nominal axial position [rad]: the regulation target."""
     return periodic_peak(run_subgear_tca(train, 0, "a", ShaftErrors(), 0.0, opts, cache=cache).te3)
+
+
+@dataclass(frozen=True)
+class RegulationOptions:
+    """Stopping rule of the secant on ΔZ: the TE maximum within ``tol`` [rad] of the target, at most ``maxiter``
+    TCA evaluations of a member."""
+
+    tol: float = 1e-3 * ARCSEC
+    maxiter: int = 12
 
 
 @dataclass(frozen=True, eq=False)
@@ -169,10 +178,11 @@ class MemberRegulation:
         return len(self.history)
 
 
-def regulate_member(train: PlanetaryTrain, i: int, member: str, errors: ShaftErrors, target: float,
-                    opts: TCAOptions = TCAOptions(), tol: float = 1e-3 * ARCSEC, maxiter: int = 12,
+def regulate_member(train: DoubleHelicalTrain, i: int, member: str, errors: ShaftErrors, target: float,
+                    opts: TCAOptions = TCAOptions(), regulation: RegulationOptions = RegulationOptions(),
                     cache: dict | None = None) -> MemberRegulation:
     """ΔZ^(2) of member (shaft i, 'a'/'b') making its TE maximum equal `target` [rad]: secant on TCA results."""
+    tol, maxiter = regulation.tol, regulation.maxiter
     phi1 = phi1_grid(train, opts)
 
     def g(dz):
@@ -214,7 +224,7 @@ def regulate_member(train: PlanetaryTrain, i: int, member: str, errors: ShaftErr
 class TrainRegulation:
     """Regulation of every member of the train and the integrated TE before, with ΔZ^(1), with ΔZ^(2)."""
 
-    train: PlanetaryTrain
+    train: DoubleHelicalTrain
     errors: tuple  # ShaftErrors per shaft
     target: float  # [rad]
     members: tuple  # ((MemberRegulation a, MemberRegulation b), ...) per shaft
@@ -226,8 +236,8 @@ class TrainRegulation:
     tca_runs: int  # member evaluations (each two pair TCAs)
 
 
-def regulate_train(train: PlanetaryTrain, errors, opts: TCAOptions = TCAOptions(), tol: float = 1e-3 * ARCSEC,
-                   maxiter: int = 12, progress=None) -> TrainRegulation:
+def regulate_train(train: DoubleHelicalTrain, errors, opts: TCAOptions = TCAOptions(),
+                   regulation: RegulationOptions = RegulationOptions(), progress=None) -> TrainRegulation:
     """Regulate all 2n members (mirror images computed once) and integrate the TE of the train.
 
     ``progress(message)`` is called after each shaft (e.g. ``print``).
@@ -242,8 +252,8 @@ def regulate_train(train: PlanetaryTrain, errors, opts: TCAOptions = TCAOptions(
     target = nominal_peak(train, opts, cache)
     regs, before, first, after = [], [], [], []
     for i, e in enumerate(errors):
-        ra = regulate_member(train, i, "a", e, target, opts, tol, maxiter, cache)
-        rb = ra if e.d_gamma == 0.0 else regulate_member(train, i, "b", e, target, opts, tol, maxiter, cache)
+        ra = regulate_member(train, i, "a", e, target, opts, regulation, cache)
+        rb = ra if e.d_gamma == 0.0 else regulate_member(train, i, "b", e, target, opts, regulation, cache)
         regs.append((ra, rb))
         mir = rb is ra
         before.append(TwinTE(i, {"a": ra.before, "b": rb.before}, mir))

@@ -53,14 +53,14 @@ from tca.errors import GeometryError, InputError
 from tca.pair.gear_pair import GearPair
 from tca.pair.analysis import ARCSEC, TCAOptions, run_pair_tca
 from tca.pair.te import MeshTE  # the one home of a pair's periodic TE; kept importable from here
-from tca.planetary.train import PlanetaryTrain, ShaftErrors
+from tca.planetary.train import DoubleHelicalTrain, ShaftErrors
 from tca.numerics.transforms import Mount, rot_x, rot_y, rot_z
 
 __all__ = ["MeshTE", "SubgearTE", "member_pose", "subgear_pairs", "phi1_grid", "subgear_meshes", "run_subgear_tca",
            "compose_te", "periodic_peak"]
 
 
-def member_pose(train: PlanetaryTrain, i: int, member: str, errors: ShaftErrors = ShaftErrors(),
+def member_pose(train: DoubleHelicalTrain, i: int, member: str, errors: ShaftErrors = ShaftErrors(),
                 dz: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Origin [mm] and R0 of planet member (shaft i 0-based, 'a'/'b') in S_f, phase pi/N2 convention."""
     th = train.carrier_angle(i)
@@ -75,7 +75,7 @@ def member_pose(train: PlanetaryTrain, i: int, member: str, errors: ShaftErrors 
     return origin, R0
 
 
-def subgear_pairs(train: PlanetaryTrain, i: int, member: str, errors: ShaftErrors = ShaftErrors(),
+def subgear_pairs(train: DoubleHelicalTrain, i: int, member: str, errors: ShaftErrors = ShaftErrors(),
                   dz: float = 0.0) -> tuple[GearPair, GearPair]:
     """(sun -> planet, planet -> ring) pairs of a single subgear drive, in their pair frames."""
     sun, planet, ring = train.gears(member)
@@ -94,7 +94,7 @@ def subgear_pairs(train: PlanetaryTrain, i: int, member: str, errors: ShaftError
     return p1, p2
 
 
-def phi1_grid(train: PlanetaryTrain, opts: TCAOptions) -> np.ndarray:
+def phi1_grid(train: DoubleHelicalTrain, opts: TCAOptions) -> np.ndarray:
     """Global sun angles φ1 [rad] over opts.cycles sun pitches, on the grid of every planet's sun mesh."""
     s = opts.steps_per_cycle
     if s % train.planets:
@@ -148,7 +148,7 @@ def periodic_peak(y: np.ndarray) -> float:
     return float(b)
 
 
-def compose_te(train: PlanetaryTrain, i: int, member: str, mesh12: MeshTE, mesh23: MeshTE,
+def compose_te(train: DoubleHelicalTrain, i: int, member: str, mesh12: MeshTE, mesh23: MeshTE,
                phi1: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Δφ3, Δφ2 (sun mesh) and Δφ3' (ring mesh) [rad] at the global sun angles phi1 (module docstring)."""
     _, planet, ring = train.gears(member)
@@ -168,7 +168,7 @@ def compose_te(train: PlanetaryTrain, i: int, member: str, mesh12: MeshTE, mesh2
     return te3, te12, te23
 
 
-def subgear_meshes(train: PlanetaryTrain, member: str, errors: ShaftErrors = ShaftErrors(), dz: float = 0.0,
+def subgear_meshes(train: DoubleHelicalTrain, member: str, errors: ShaftErrors = ShaftErrors(), dz: float = 0.0,
                    opts: TCAOptions = TCAOptions(), cache: dict | None = None) -> tuple[MeshTE, MeshTE]:
     """Sun and ring meshes (one cycle each) of a member with these errors and axial position, any shaft."""
     key = (member, errors.d_ex, errors.d_gamma, float(dz), opts.steps_per_cycle)
@@ -182,7 +182,7 @@ def subgear_meshes(train: PlanetaryTrain, member: str, errors: ShaftErrors = Sha
     return out
 
 
-def run_subgear_tca(train: PlanetaryTrain, i: int, member: str, errors: ShaftErrors = ShaftErrors(),
+def run_subgear_tca(train: DoubleHelicalTrain, i: int, member: str, errors: ShaftErrors = ShaftErrors(),
                     dz: float = 0.0, opts: TCAOptions = TCAOptions(), phi1: np.ndarray | None = None,
                     cache: dict | None = None) -> SubgearTE:
     """TCA of the single subgear drive of shaft i (0-based), member 'a'/'b': two pair TCAs, composed."""

@@ -41,7 +41,7 @@ from functools import cached_property
 from tca.errors import GeometryError, InputError
 from tca.geometry.gear import Gear
 
-__all__ = ["PlanetaryTrain", "ShaftErrors", "MEMBERS", "dz_first_order"]
+__all__ = ["DoubleHelicalTrain", "ShaftErrors", "MEMBERS", "dz_first_order"]
 
 MEMBERS = ("a", "b")
 
@@ -61,7 +61,7 @@ class ShaftErrors:
 
 
 @dataclass(frozen=True)
-class PlanetaryTrain:
+class DoubleHelicalTrain:
     """Sun, planet and ring members *a* (members *b* mirrored), n planet shafts, gap F [mm]."""
 
     sun: Gear
@@ -159,7 +159,7 @@ class PlanetaryTrain:
         return self.gears(member)[0].hand
 
 
-def dz_first_order(train: PlanetaryTrain, d_ex: float) -> float:
+def dz_first_order(train: DoubleHelicalTrain, d_ex: float) -> float:
     """ΔZ^(1) [mm] compensating ΔE_x [mm] by Eq. (1.16), in the sign convention of the module."""
     b1, b3 = train.sun.helix, train.ring.helix
     if abs(b1 - b3) < 1e-9:

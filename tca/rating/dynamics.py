@@ -58,7 +58,8 @@ from enum import Enum
 from tca.rating.errors import RatingInputError, RatingWarning, check_range
 from tca.rating.geometry import PairGeometry
 
-__all__ = ["MeshKind", "DynamicFactor", "reduced_mass", "running_in_tip_relief", "dynamic_factor", "cv_coefficients"]
+__all__ = ["MeshKind", "DynamicFactor", "ToothDeviations", "reduced_mass", "running_in_tip_relief", "dynamic_factor",
+           "cv_coefficients"]
 
 
 class MeshKind(str, Enum):
@@ -84,6 +85,15 @@ class DynamicFactor:
     b_k: float
     cv: tuple[float, ...]  # C_v1..C_v7
     warnings: tuple[RatingWarning, ...] = ()
+
+
+@dataclass(frozen=True)
+class ToothDeviations:
+    """What excites the mesh in (D4) [µm]: effective base pitch and profile form deviations, tip relief C_a."""
+
+    f_pb_eff: float  # f_pb - y_α
+    f_falpha_eff: float  # f_fα - y_f
+    tip_relief: float  # C_a
 
 
 def _disc_mass(rho: float, dm: float, db: float, di: float) -> float:
@@ -134,11 +144,11 @@ def cv_coefficients(eps_gamma: float) -> tuple[float, ...]:
 
 
 def dynamic_factor(geom: PairGeometry, *, pinion_speed: float, line_load: float, c_prime: float,
-                   c_gamma_alpha: float, reduced_mass: float, f_pb_eff: float, f_falpha_eff: float,
-                   tip_relief: float) -> DynamicFactor:
+                   c_gamma_alpha: float, reduced_mass: float, deviations: ToothDeviations) -> DynamicFactor:
     """K_v (D3)-(D10). ``pinion_speed`` n_1 [1/min] (relative to the carrier in a planetary stage),
-    ``line_load`` w = F_t K_A K_γ / b [N/mm], stiffness [N/(mm µm)], ``reduced_mass`` [kg/mm], deviations and tip
-    relief C_a [µm]."""
+    ``line_load`` w = F_t K_A K_γ / b [N/mm], stiffness [N/(mm µm)], ``reduced_mass`` [kg/mm], ``deviations`` and
+    tip relief C_a [µm]."""
+    f_pb_eff, f_falpha_eff, tip_relief = deviations.f_pb_eff, deviations.f_falpha_eff, deviations.tip_relief
     check_range("pinion_speed", pinion_speed, 0.0, lo_open=True)
     check_range("line_load", line_load, 0.0, lo_open=True)
     check_range("reduced_mass", reduced_mass, 0.0, lo_open=True)

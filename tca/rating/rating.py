@@ -27,7 +27,8 @@ from tca.rating.bending import (deep_tooth_factor, helix_factor, notch_sensitivi
                       size_factor, surface_factor)
 from tca.rating.contact import (ContactFactors, contact_factors, lubricant_factors, nominal_contact_stress, roughness_factor,
                       work_hardening_factor)
-from tca.rating.dynamics import DynamicFactor, MeshKind, dynamic_factor, reduced_mass, running_in_tip_relief
+from tca.rating.dynamics import (DynamicFactor, MeshKind, ToothDeviations, dynamic_factor, reduced_mass,
+                                 running_in_tip_relief)
 from tca.rating.errors import RatingInputError, RatingWarning, check_range
 from tca.rating.face_load import FaceLoad, ShaftData, face_load_factor, root_face_load_factor
 from tca.rating.factors import Factor, Given, Source
@@ -247,8 +248,8 @@ def rate(case: RatingCase) -> PairRating:
         c_a = [g[i].tip_relief if g[i].tip_relief is not None else running_in_tip_relief(mat[i].sigma_h_lim)
                for i in (0, 1)]
         dyn = dynamic_factor(geom, pinion_speed=op.speed, line_load=w, c_prime=c_prime, c_gamma_alpha=c_ga,
-                             reduced_mass=m_red, f_pb_eff=f_pb - y_alpha, f_falpha_eff=f_fa - y_f,
-                             tip_relief=0.5 * (c_a[0] + c_a[1]))
+                             reduced_mass=m_red, deviations=ToothDeviations(f_pb - y_alpha, f_fa - y_f,
+                                                                            0.5 * (c_a[0] + c_a[1])))
         warnings.extend(dyn.warnings)
         relief = "given" if all(x.tip_relief is not None for x in g) else "running-in C_ay (D11) where not given"
         pair_f["K_v"] = _f(dyn.k_v, f"ISO 6336-1 method B, {dyn.speed_range} range, N = {dyn.resonance_ratio:.4f} "

@@ -23,7 +23,7 @@ traces. A parabolic (profile-crowned, Eq. 1.5 of the report) rack bends its flan
 to the bent flank, sits :math:`\Delta\eta` [mm] nearer the gear tooth's centre line than on the straight
 rack (:math:`\Delta\eta = 0` for a straight rack): ISO's E takes it as it takes a protuberance's residual
 undercut (:math:`s_{pr}/\cos\alpha_n`); each flank uses its own parabola and the chord is the sum of the two
-half-chords. The trochoid is then exact (tests/tca/test_iso6336.py: 1e-5 against the generated fillet).
+half-chords. The trochoid is then exact (tests/tca/rating/test_root_stress.py: 1e-5 against the generated fillet).
 
 Load at the outer point of single pair tooth contact of the virtual spur gear (method B): :math:`d_n = m_n z_n`, :math:`d_{bn} = d_n\cos\alpha_n`,
 :math:`d_{an} = d_n + d_a - d`, :math:`\varepsilon_{\alpha n} = \varepsilon_\alpha/\cos^2\beta_b`,
@@ -43,7 +43,7 @@ rack, whose root rounding ρ_fP2 and dedendum h_fP2 are those of the tool that c
 generating rack: h_fP2 = tool_addendum m_n, ρ_fP2 = tool_tip_radius m_n). The equations below are that rack's
 geometry, derived here; (I1), (I3) and the load angle of (I4) equal DIN 3990-11:1989 Annex D, Eqs. D.5.05,
 D.5.11, D.5.15 for internal gears (checked against an open-source implementation of that annex to 1e-9:
-tests/tca/test_iso6336.py; the text of ISO 6336-3's clause was not available to this project). On a straight-flanked rack the 30°
+tests/tca/rating/test_root_stress.py; the text of ISO 6336-3's clause was not available to this project). On a straight-flanked rack the 30°
 tangent lies on the root rounding, ϑ = π/6 exactly, and no fixed point is needed. With the virtual internal
 gear's diameters as magnitudes (:math:`d_{fn} = d_n + d_f - d` its root, :math:`d_{an} = d_n + d_a - d` its tip,
 :math:`d_a < d < d_f`), the outer point of single contact lies one base pitch less than the path length from
@@ -70,7 +70,7 @@ tangent point :math:`\rho_{fP2}\cos 30°` nearer); (I3) is the height over the c
 crosses the centre line, the flank's half-thickness at the load point being the bracket. DIN 3990-11 (D.5.16) takes
 :math:`\rho_{F2} = \rho_{fP2}/2`; (I4) keeps the substitute rack's own rounding, the
 limit of the generated fillet (the rack-generated ring's fillet radius tends to ρ_fP2 as 1/z:
-tests/tca/test_iso6336.py), and DIN's halved radius would put q_s = s_Fn / (2 ρ_F) near 9.6, outside the
+tests/tca/rating/test_root_stress.py), and DIN's halved radius would put q_s = s_Fn / (2 ρ_F) near 9.6, outside the
 range 1 <= q_s < 8 of Y_S (F2) for the standard rack. The internal gear's own tooth is thicker at the root than the substitute rack's
 (the flanks of an internal tooth diverge toward the root faster than a rack's), so (I1)-(I3) are conservative
 for rings of few teeth.
@@ -119,6 +119,19 @@ class RootFactors:
     y_s: float  # stress correction factor
 
 
+@dataclass(frozen=True)
+class _Section:
+    """The critical section and the load of one gear, from which (F1) and (F2) follow (fields of :class:`RootFactors`)."""
+
+    z_n: float
+    s_fn: float  # [mm]
+    rho_f: float  # [mm]
+    h_fe: float  # [mm]
+    alpha_fen: float  # [rad]
+    d_en: float  # [mm]
+    theta: float  # [rad]
+
+
 def _virtual(gear: Gear, eps_alpha: float):
     """Virtual spur gear of the normal section: (z_n, d, d_n, d_bn, d_an, ε_αn) [mm], diameters as magnitudes."""
     mn, an = gear.module, gear.pressure_angle
@@ -163,8 +176,9 @@ def root_factors(gear: Gear, eps_alpha: float) -> RootFactors:
         return sides[0]
     # two parabolas: each flank's fillet has its own 30° point; the chord is the sum of the two half-chords
     a, b = sides
-    return _factors(a.z_n, 0.5 * (a.s_fn + b.s_fn), 0.5 * (a.rho_f + b.rho_f), 0.5 * (a.h_fe + b.h_fe),
-                    0.5 * (a.alpha_fen + b.alpha_fen), a.d_en, 0.5 * (a.theta + b.theta), gear.module, gear.pressure_angle)
+    return _factors(_Section(a.z_n, 0.5 * (a.s_fn + b.s_fn), 0.5 * (a.rho_f + b.rho_f), 0.5 * (a.h_fe + b.h_fe),
+                             0.5 * (a.alpha_fen + b.alpha_fen), a.d_en, 0.5 * (a.theta + b.theta)),
+                    gear.module, gear.pressure_angle)
 
 
 def _external(gear: Gear, eps_alpha: float, shift: float) -> RootFactors:
@@ -193,7 +207,7 @@ def _external(gear: Gear, eps_alpha: float, shift: float) -> RootFactors:
     a_fen = a_en - g_e
     h_fe = 0.5 * mn * ((math.cos(g_e) - math.sin(g_e) * math.tan(a_fen)) * d_en / mn - z_n * math.cos(math.pi / 3 - th)
                        - G / math.cos(th) + rho_fp / mn)
-    return _factors(z_n, s_fn, rho_f, h_fe, a_fen, d_en, th, mn, an)
+    return _factors(_Section(z_n, s_fn, rho_f, h_fe, a_fen, d_en, th), mn, an)
 
 
 def _internal(gear: Gear, eps_alpha: float) -> RootFactors:
@@ -212,16 +226,16 @@ def _internal(gear: Gear, eps_alpha: float) -> RootFactors:
     s_fn = 2 * half - _centre_shift(gear, 1) - _centre_shift(gear, -1)
     h_e = 0.5 * (d_fn - d_en)  # height of the load point over the root circle
     h_fe = h_e - (math.pi / 4 * mn + (h_fp - h_e) * math.tan(an)) * math.tan(an) - rho_fp * (1 - math.sin(th))
-    return _factors(z_n, s_fn, rho_fp, h_fe, an, d_en, th, mn, an)
+    return _factors(_Section(z_n, s_fn, rho_fp, h_fe, an, d_en, th), mn, an)
 
 
-def _factors(z_n, s_fn, rho_f, h_fe, a_fen, d_en, th, mn, an) -> RootFactors:
-    """Y_F, Y_S from the critical section (Eqs. (F1), (F2))."""
-    y_f = 6 * (h_fe / mn) * math.cos(a_fen) / ((s_fn / mn) ** 2 * math.cos(an))
-    L = s_fn / h_fe
-    q_s = s_fn / (2 * rho_f)
+def _factors(sec: _Section, mn: float, an: float) -> RootFactors:
+    """Y_F, Y_S from the critical section (Eqs. (F1), (F2)); normal module mn [mm], pressure angle an [rad]."""
+    y_f = 6 * (sec.h_fe / mn) * math.cos(sec.alpha_fen) / ((sec.s_fn / mn) ** 2 * math.cos(an))
+    L = sec.s_fn / sec.h_fe
+    q_s = sec.s_fn / (2 * sec.rho_f)
     y_s = (1.2 + 0.13 * L) * q_s ** (1 / (1.21 + 2.3 / L))
-    return RootFactors(z_n, s_fn, rho_f, h_fe, a_fen, d_en, th, y_f, y_s)
+    return RootFactors(sec.z_n, sec.s_fn, sec.rho_f, sec.h_fe, sec.alpha_fen, sec.d_en, sec.theta, y_f, y_s)
 
 
 def sigma_f0(gear: Gear, torque: float, eps_alpha: float, eps_beta: float = 0.0, face_width: float | None = None) -> float:

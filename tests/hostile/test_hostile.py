@@ -102,16 +102,6 @@ def check_refused(capsys, tmp_path, argv, expect: str, max_s: float = 3.0) -> st
     return errors[0]
 
 
-@pytest.fixture(scope="module", autouse=True)
-def _imported():
-    """Import every subcommand (and what it imports) once, so the time limit measures the checks."""
-    from pipelines.cli import build_parser
-    import pipelines.models.stress.run  # noqa: F401
-    import pipelines.report.run  # noqa: F401
-
-    build_parser()
-
-
 @pytest.mark.parametrize("entry", ENTRIES, ids=[e[0] for e in ENTRIES])
 def test_hostile_input_is_refused_cleanly(entry, tmp_path, capsys):
     ident, command, base, edits, args, raw, expect = entry

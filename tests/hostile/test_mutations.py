@@ -16,7 +16,7 @@ from pathlib import Path
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from tests.hostile.test_hostile import base_data, check_refused, _imported  # noqa: F401  (fixture)
+from tests.hostile.test_hostile import base_data, check_refused
 from tests.support.tomlw import dumps
 
 # subcommand -> (shipped case, keys that must be present)

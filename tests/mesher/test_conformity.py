@@ -53,7 +53,7 @@ def test_a_whole_gear_closes_on_itself():
     assert quality(m).volume.sum() == pytest.approx(19 * quality(one).volume.sum(), rel=1e-10)
 
 
-def _surface_distance(surf, p, u0):
+def surface_distance(surf, p, u0):
     """Distance from points p (n, 3) to the surface at their own level z (v = z), Newton on u."""
     u = u0.copy()
     z = p[:, 2]
@@ -81,7 +81,7 @@ def test_nodes_on_flanks_and_fillets_lie_on_the_exact_tooth_surfaces(name):
                 samples = np.broadcast_to(np.linspace(lo, hi, 100), (len(p), 100))
                 grid = s.points(samples, np.broadcast_to(p[:, 2:3], samples.shape))
                 guess = samples[0, np.argmin(np.linalg.norm(grid - p[:, None, :], axis=-1), axis=1)]
-                assert _surface_distance(s, p, guess).max() < 1e-9
+                assert surface_distance(s, p, guess).max() < 1e-9
 
 
 def test_a_non_conforming_mesh_is_rejected():

@@ -10,7 +10,7 @@ from tca.errors import InputError
 from tca.pair.gear_pair import GearPair
 from tca.pair.analysis import ARCSEC, TCAOptions
 from tca.pair.te import GRID, NAMED, POSITIONS, path_angle
-from tca.planetary.train import PlanetaryTrain, ShaftErrors
+from tca.planetary.train import DoubleHelicalTrain, ShaftErrors
 
 from pipelines.models.stress.model import FESettings
 from pipelines.models.stress.scene import PHASES
@@ -32,7 +32,7 @@ class StressCase:
     torque: float  # [N mm] magnitude, on the driven gear (pair) or the ring (twin)
     title: str = ""
     pair: GearPair | None = None
-    train: PlanetaryTrain | None = None
+    train: DoubleHelicalTrain | None = None
     errors: ShaftErrors = field(default_factory=ShaftErrors)
     regulation: str = "tca"
     dz: tuple = (0.0, 0.0)  # [mm] given axial regulation of members a, b

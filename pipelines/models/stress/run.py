@@ -82,7 +82,7 @@ from tca.pair.analysis import ARCSEC, run_pair_tca
 from tca.rating.root_stress import tooth_root
 from tca.pair.te import grid_index, position_angle
 from tca.planetary.subgear import phi1_grid, run_subgear_tca
-from tca.planetary.regulation import nominal_peak, regulate_member, twin_te
+from tca.planetary.regulation import RegulationOptions, nominal_peak, regulate_member, twin_te
 
 from pipelines.jsonio import plain
 from pipelines.models.stress.case import StressCase
@@ -112,9 +112,9 @@ def _regulation(case: StressCase, cache: dict, progress) -> tuple[tuple, dict]:
     if case.regulation == "given":
         return case.dz, {"mode": "given", "dz_a_mm": case.dz[0], "dz_b_mm": case.dz[1]}
     target = nominal_peak(tr, case.tca, cache)
-    ra = regulate_member(tr, 0, "a", e, target, case.tca, case.regulation_tol, case.regulation_maxiter, cache)
-    rb = ra if e.d_gamma == 0.0 else regulate_member(tr, 0, "b", e, target, case.tca, case.regulation_tol,
-                                                     case.regulation_maxiter, cache)
+    regulation = RegulationOptions(case.regulation_tol, case.regulation_maxiter)
+    ra = regulate_member(tr, 0, "a", e, target, case.tca, regulation, cache)
+    rb = ra if e.d_gamma == 0.0 else regulate_member(tr, 0, "b", e, target, case.tca, regulation, cache)
     if progress is not None:
         progress(f"tca: regulation dZ(2) a = {ra.dz2:+.4f} mm, b = {rb.dz2:+.4f} mm")
     rec = {"mode": "tca", "target_peak_arcsec": target / ARCSEC, "dz1_a_mm": ra.dz1, "dz2_a_mm": ra.dz2,

@@ -64,7 +64,7 @@ from tca.errors import InputError
 from tca.geometry.gear import Gear
 from tca.pair.gear_pair import GearPair
 from tca.pair.analysis import ContactKind, PairTCAResult
-from tca.planetary.train import PlanetaryTrain, ShaftErrors
+from tca.planetary.train import DoubleHelicalTrain, ShaftErrors
 from tca.pair.te import MeshContact, mesh_contact
 from tca.contact.systems import PlacedFlank, foot_points
 from tca.planetary.subgear import member_pose, subgear_pairs
@@ -299,7 +299,7 @@ class TwinSetting:
     phase: str = "assembled"
 
 
-def twin_scene(train: PlanetaryTrain, subs: dict, setting: TwinSetting, phi1: float, torque: float,
+def twin_scene(train: DoubleHelicalTrain, subs: dict, setting: TwinSetting, phi1: float, torque: float,
                rules: SizeRules, mat: Material) -> Scene:
     """Twin subgear drive of shaft 1 at sun angle phi1 [rad]: sun fixed, twin planet and ring rigid (module docstring).
 

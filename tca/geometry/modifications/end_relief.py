@@ -52,7 +52,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from tca.errors import InputError
-from tca.geometry.surfaces import SurfacePoints, ToothSurface, _unit_normal
+from tca.geometry.surfaces import SurfacePoints, ToothSurface, unit_normal
 
 __all__ = ["EndRelief", "RelievedSurface", "END_RELIEF_ENDS", "removal_sign", "check_amount"]
 
@@ -157,7 +157,7 @@ class RelievedSurface(ToothSurface):
         r_uu = R(b.r_uu) + 2 * pu * Jru + puu * Jr + pu**2 * JJr
         r_uv = R(b.r_uv) + pu * Jrv + pv * Jru + puv * Jr + pu * pv * JJr
         r_vv = R(b.r_vv) + 2 * pv * Jrv + pvv * Jr + pv**2 * JJr
-        return SurfacePoints(r, r_u, r_v, r_uu, r_uv, r_vv, _unit_normal(r_u, r_v, self.orient))
+        return SurfacePoints(r, r_u, r_v, r_uu, r_uv, r_vv, unit_normal(r_u, r_v, self.orient))
 
 
 def removal_sign(flank: ToothSurface) -> float:

@@ -45,7 +45,7 @@ def results(tmp_path_factory):
 
 def test_shipped_cases_give_the_report_numbers(results):
     # the acceptance numbers of issue 4 at the cases' own resolution (720 positions); tolerances as in
-    # tests/tca/test_isostatic.py
+    # tests/tca/isostatic/test_analysis.py
     s = {k: v[0] for k, v in results.items()}
     for k in s:
         assert s[k]["dof"]["state"] == "isostatic" and s[k]["dof"]["isostatic_planets"] == 3

@@ -13,7 +13,7 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 
 from tca.rating import DEG, GearBlank, Material, PairData, iso_material, pair_geometry, tolerances
-from tca.rating.dynamics import cv_coefficients, dynamic_factor, running_in_tip_relief
+from tca.rating.dynamics import ToothDeviations, cv_coefficients, dynamic_factor, running_in_tip_relief
 from tca.rating.face_load import ShaftData, face_load_factor
 from tca.rating.geometry import inv, inv_inverse
 from tca.rating.life import bending_life_curve, contact_life_curve, life_factor
@@ -153,8 +153,8 @@ def test_face_load_factor_is_continuous_at_the_switch():
 def test_dynamic_factor_intermediate_range_joins_its_neighbours():
     """(D8) joins (D7) at N = 1.15 and (D9) at N = 1.5."""
     g = pair_geometry(PairData(4.0, 20 * DEG, 0.0, GearBlank(20, 40.0), GearBlank(60, 40.0)))
-    common = dict(line_load=300.0, c_prime=14.0, c_gamma_alpha=20.0, reduced_mass=0.01, f_pb_eff=8.0,
-                  f_falpha_eff=9.0, tip_relief=5.0)
+    common = dict(line_load=300.0, c_prime=14.0, c_gamma_alpha=20.0, reduced_mass=0.01,
+                  deviations=ToothDeviations(f_pb_eff=8.0, f_falpha_eff=9.0, tip_relief=5.0))
     n_e1 = dynamic_factor(g, pinion_speed=1.0, **common).resonance_speed
     kv = [dynamic_factor(g, pinion_speed=n * n_e1, **common).k_v for n in (1.15, 1.15 + 1e-9, 1.5 - 1e-9, 1.5)]
     assert kv[0] == pytest.approx(kv[1], abs=1e-8) and kv[2] == pytest.approx(kv[3], abs=1e-8)

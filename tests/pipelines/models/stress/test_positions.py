@@ -105,7 +105,7 @@ def test_next_pair_at_the_hpstc_touches_unless_its_tip_is_relieved():
     """At the HPSTC the entering pair meets the wheel's tip: a gap of 0 for unmodified flanks, C_a with a relief.
 
     Independent truth: the relief's amount at the tip circle (15 um, pipelines/cases/stress_spur_pair_relief.toml);
-    measured 15.25 um (the rack's normal relief mapped onto the involute, within 3 %, tests/tca/test_modifications.py).
+    measured 15.25 um (the rack's normal relief mapped onto the involute, within 3 %, tests/tca/geometry/test_modifications.py).
     """
     from dataclasses import replace
 

@@ -11,8 +11,8 @@ from tca.isostatic.dof import TrainConstraints, count_dof
 from tca.errors import InputError
 from tca.geometry.gear import Gear
 from tca.isostatic.analysis import run_isostatic_tca
-from tca.isostatic.subtrain import JT_CENTRES, Members, TrainFlanks, subtrain_eval
-from tca.isostatic.train import PlanetaryTrain
+from tca.isostatic.subtrain import JT_CENTRES, Members, subtrain_eval
+from tca.isostatic.train import IsostaticTrain
 
 
 @pytest.mark.parametrize("case,kw,planets,c0", [
@@ -78,9 +78,9 @@ def test_case_3_is_isostatic_by_count_but_singular():
     assert count_dof(c3).state == "singular" and count_dof(c3).first_order_rank == 3
     ratios = {}
     for free, n in ((("sun", "carrier"), 5), (("sun",), 3)):
-        tr = PlanetaryTrain(sun, (pl,) * n, ring, TrainConstraints(n, sun_axis_free=True,
+        tr = IsostaticTrain(sun, (pl,) * n, ring, TrainConstraints(n, sun_axis_free=True,
                                                                   carrier_axis_free="carrier" in free))
-        fl = TrainFlanks.of(tr)
+        fl = tr.flanks()
         # the ideal configuration at phi1 = 0.3 from the (case 2) solver and, for case 3, the rigid one
         ref = run_isostatic_tca(tr.with_(constraints=TrainConstraints(n)) if n == 5 else tr, np.array([0.3]))
         m = Members(np.repeat(ref.phi1, n), tr.theta, tr.pins, np.zeros((n, 2)), ref.teeth.reshape(n, 4),
@@ -96,4 +96,4 @@ def test_case_3_is_isostatic_by_count_but_singular():
     assert ratios[5] < 1e-12
     assert ratios[3] > 0.1
     with pytest.raises(InputError, match="singular"):
-        run_isostatic_tca(PlanetaryTrain(sun, (pl,) * 5, ring, c3), np.array([0.0]))
+        run_isostatic_tca(IsostaticTrain(sun, (pl,) * 5, ring, c3), np.array([0.0]))

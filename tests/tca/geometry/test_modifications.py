@@ -14,7 +14,8 @@ import pytest
 from pipelines.cases.reader import read_gear
 from pipelines.cases.schema import Table
 from tca.errors import InputError
-from tca.geometry.gear import Gear, TipRelief
+from tca.geometry.gear import Gear
+from tca.geometry.modifications.tip_relief import TipRelief
 from tca.pair.gear_pair import GearPair
 from tca.pair.analysis import TCAOptions, run_pair_tca
 
@@ -23,9 +24,9 @@ G = Gear("p", 19, 4.5, math.radians(20), 14.0)
 
 def _deviation(g: Gear, gr: Gear, r: float) -> float:
     """Material removed [mm] at radius r: normal distance of gr's profile from g's (transverse, z = 0)."""
-    u0, u1 = g._u_at_radius(1, r), gr._u_at_radius(1, r)
-    p0, t0 = g._profile(1, np.array(u0))
-    p1, _ = gr._profile(1, np.array(u1))
+    u0, u1 = g.u_at_radius(1, r), gr.u_at_radius(1, r)
+    p0, t0 = g.profile(1, np.array(u0))
+    p1, _ = gr.profile(1, np.array(u1))
     n = np.array([t0[1], -t0[0]]) / np.linalg.norm(t0)
     return float((p1 - p0) @ n)
 

@@ -28,11 +28,11 @@ def test_pinion_identical_to_the_shaper_is_conjugate(face60):
     # (~1e-10 mm at a radius of ~150 mm, 1e-7 arcsec) and the accepted Newton residual (1e-9 mm).
     pin = Gear("shaper_as_pinion", 20, 5.0, d(20), 40.0, helix=d(10), hand=1, tool_addendum=1.3)
     mesh = FaceMesh(face60, pin, "face")
-    phi, x, kind, code, res, stops = trace_reference_pair(mesh, 24)
-    assert (phi[-1] - phi[0]) > mesh.pitches[0]  # the trace covers more than a cycle
-    te = x[:, 4] - mesh.ratio * phi
+    tr = trace_reference_pair(mesh, 24)
+    assert (tr.phi[-1] - tr.phi[0]) > mesh.pitches[0]  # the trace covers more than a cycle
+    te = tr.x[:, 4] - mesh.ratio * tr.phi
     assert np.abs(te).max() / ARCSEC < 1e-5
-    assert np.all(kind == SURFACE)
+    assert np.all(tr.kind == SURFACE)
 
 
 @pytest.fixture(scope="module")

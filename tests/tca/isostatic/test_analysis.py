@@ -14,7 +14,7 @@ from tca.isostatic.dof import TrainConstraints
 from tca.isostatic.analysis import ARCSEC, IsostaticOptions, phi1_grid, run_isostatic_tca
 from tca.isostatic.flanks import apply, rot2
 from tca.isostatic.linear import indexing_closed_form
-from tca.isostatic.train import PlanetaryTrain
+from tca.isostatic.train import IsostaticTrain
 from tca.report_data import indexing_error_placements, table_3_1_gears, table_3_1_planet
 
 d = math.radians
@@ -25,7 +25,7 @@ DET = indexing_error_placements()
 
 
 def train(planet=PLANET, **kw):
-    return PlanetaryTrain(SUN, (planet,) * 3, RING, **kw)
+    return IsostaticTrain(SUN, (planet,) * 3, RING, **kw)
 
 
 def rev(tr, n=720):
@@ -178,7 +178,7 @@ def test_double_crowned_planets_give_an_almost_constant_lag(crowned):
     # crowning errors of each planet add, see the bench report and docs/deviations.md).
     mag = np.linalg.norm(r.sun_center_um, axis=1)
     assert mag.max() == pytest.approx(6.29, abs=0.02)
-    single = run_isostatic_tca(PlanetaryTrain(SUN, (CROWNED,), RING, TrainConstraints(1)),
+    single = run_isostatic_tca(IsostaticTrain(SUN, (CROWNED,), RING, TrainConstraints(1)),
                                phi1_grid(r.train, 200, sun_revolutions=0.05))
     assert single.carrier_te_peak_to_peak_arcsec > 5 * r.carrier_te_peak_to_peak_arcsec
 

@@ -6,9 +6,7 @@ import numpy as np
 import pytest
 
 from tca.contact.ellipse import contact_ellipse
-from tca.errors import ConvergenceError
 from tca.geometry.gear import Gear
-from tca.numerics.newton import newton
 from tca.pair.gear_pair import GearPair, Misalignment
 from tca.pair.analysis import ARCSEC, ContactKind, TCAOptions, run_pair_tca
 from tca.report_data import table_1_1_planet, table_1_1_sun
@@ -112,14 +110,6 @@ def test_contact_ellipse_of_a_sphere_on_a_plane():
     assert b[0] == pytest.approx(math.sqrt(2 * delta * R), rel=1e-12)
 
 
-def test_newton_failure_names_the_position():
-    def fun(x, idx):  # x^2 + 1 = 0 has no real root
-        return x**2 + 1.0, 2 * x[:, :, None]
-
-    with pytest.raises(ConvergenceError, match="phi1 = 7.5 deg"):
-        newton(fun, np.array([[0.3]]), where=lambda i: "phi1 = 7.5 deg")
-
-
 def test_two_full_cycles_and_transitions(planet):
     sun = table_1_1_sun(beta_deg=10.0)
     r = run_pair_tca(GearPair(sun, planet), TCAOptions(cycles=2, steps_per_cycle=40))
@@ -130,14 +120,3 @@ def test_two_full_cycles_and_transitions(planet):
     assert r.transitions[1] - r.transitions[0] == pytest.approx(2 * math.pi / 41, rel=1e-3)
     # the contact ellipse exists (point contact) and is a few mm long
     assert np.all(np.isfinite(r.ellipse_a)) and 0.5 < np.nanmax(r.ellipse_a) < 15
-
-
-def test_newton_isolates_a_member_that_leaves_the_domain():
-    # sqrt(x) - 2 = 0: a member started at x < 0 has a non-finite residual and fails on its own
-    def fun(x, idx):
-        with np.errstate(invalid="ignore", divide="ignore"):
-            return np.sqrt(x) - 2.0, (0.5 / np.sqrt(x))[:, :, None]
-
-    r = newton(fun, np.array([[1.0], [-1.0], [9.0]]), raise_on_failure=False)
-    assert list(r.converged) == [True, False, True]
-    assert np.allclose(r.x[[0, 2], 0], 4.0)

@@ -21,7 +21,7 @@ from tca.pair.relief import RIDGE_Z_MAX, RIDGE_Z_MIN
 from tca.pair.result import ContactKind
 from tca.pair.analysis import TCAOptions, run_pair_tca
 from tca.units import ARCMIN, ARCSEC
-from tests.tca.test_surfaces import involute_angle
+from tests.tca.geometry.test_surfaces import involute_angle
 
 d = math.radians
 SPUR = Gear("p", 19, 4.5, d(20), 14.0)
@@ -189,7 +189,7 @@ def test_mesh_nodes_follow_the_relieved_flank():
     """Flank nodes of the hexahedral tooth lie on the relieved surface (1e-9 mm, parameter rounding) and
     at the face ends off the unmodified one by C_I along the line of action."""
     from mesher import MeshOptions, check_conformity, mesh_gear
-    from tests.mesher.test_conformity import _surface_distance
+    from tests.mesher.test_conformity import surface_distance
 
     g = replace(SPUR, end_relief=EndRelief(0.015, 3.0, 1))
     m = mesh_gear(g, MeshOptions(teeth=1))
@@ -202,7 +202,7 @@ def test_mesh_nodes_follow_the_relieved_flank():
                 samples = np.broadcast_to(np.linspace(lo, hi, 200), (len(p), 200))
                 grid = surf.points(samples, np.broadcast_to(p[:, 2:3], samples.shape))
                 guess = samples[0, np.argmin(np.linalg.norm(grid - p[:, None, :], axis=-1), axis=1)]
-                dist = _surface_distance(surf, p, guess)
+                dist = surface_distance(surf, p, guess)
                 if gap is None:
                     assert dist.max() < 1e-9
                 elif piece == "flank":  # off the unmodified involute by C(z) (normal distance, spur: transverse)

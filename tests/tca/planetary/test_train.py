@@ -6,7 +6,7 @@ import math
 import pytest
 
 from tca.errors import GeometryError, InputError
-from tca.planetary.train import PlanetaryTrain, ShaftErrors, dz_first_order
+from tca.planetary.train import DoubleHelicalTrain, ShaftErrors, dz_first_order
 from tca.report_data import TABLE_1_1_MEMBER_GAP, TABLE_1_1_PLANETS, table_1_1_gears
 
 d = math.radians
@@ -17,7 +17,7 @@ def table11(n_planet=34, beta1=10.25, beta3=9.75, planets=5, module_ring=2.0):
     sun, planet, ring = table_1_1_gears(beta_sun_deg=beta1, beta_ring_deg=beta3)
     planet = dataclasses.replace(planet, teeth=n_planet)
     ring = dataclasses.replace(ring, module=module_ring)
-    return PlanetaryTrain(sun, planet, ring, planets, TABLE_1_1_MEMBER_GAP)
+    return DoubleHelicalTrain(sun, planet, ring, planets, TABLE_1_1_MEMBER_GAP)
 
 
 def test_table_1_1_train_ratios():
@@ -53,7 +53,7 @@ def test_hands_of_the_members():
     sun, planet, ring = table_1_1_gears(beta_sun_deg=10.0, beta_ring_deg=10.0, crowned=False)
     planet = dataclasses.replace(planet, hand=1)  # the sun's hand: rejected
     with pytest.raises(InputError, match=r"gears\.planet\.hand.*left \(opposite to the sun\)"):
-        PlanetaryTrain(sun, planet, ring, TABLE_1_1_PLANETS, TABLE_1_1_MEMBER_GAP)
+        DoubleHelicalTrain(sun, planet, ring, TABLE_1_1_PLANETS, TABLE_1_1_MEMBER_GAP)
 
 
 def test_planets_that_overlap_are_rejected():

@@ -12,7 +12,7 @@ from tca.isostatic.dof import TrainConstraints
 from tca.geometry.gear import Gear
 from tca.isostatic.analysis import ARCSEC, phi1_grid, run_isostatic_tca
 from tca.isostatic.linear import indexing_closed_form, linear_response
-from tca.isostatic.train import PlanetaryTrain, PlanetPlacement
+from tca.isostatic.train import IsostaticTrain, PlanetPlacement
 from tca.pair.gear_pair import GearPair
 from tca.pair.analysis import TCAOptions, run_pair_tca
 from tca.report_data import table_3_1_gears, table_3_1_planet, table_3_1_sun
@@ -30,7 +30,7 @@ DESIGNS = {
 def make(design, **kw):
     N1, N2, N3, m, a = DESIGNS[design]
     face = 10 * m
-    return PlanetaryTrain(Gear("sun", N1, m, d(a), face), (Gear("planet", N2, m, d(a), face),) * 3,
+    return IsostaticTrain(Gear("sun", N1, m, d(a), face), (Gear("planet", N2, m, d(a), face),) * 3,
                           Gear("ring", N3, m, d(a), face, internal=True), **kw)
 
 
@@ -129,7 +129,7 @@ def test_planar_subtrain_matches_the_3d_pair_tca():
             best[inside] = np.maximum(best[inside], spl(y[inside]))
         return best
 
-    one = PlanetaryTrain(sun, (planet,), ring, constraints=TrainConstraints(1))
+    one = IsostaticTrain(sun, (planet,), ring, constraints=TrainConstraints(1))
     phi = np.linspace(-0.3, 0.3, 151)
     r = run_isostatic_tca(one, phi)
     pred = pair_te(phi - r.phi_c) * 43 / (65 + 151)
