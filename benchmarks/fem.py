@@ -36,7 +36,7 @@ from fem.elements.hex8 import SKFEM_FROM_VTK, hex8_matrices, isotropic_stiffness
 from fem.la.linsolve import linear_solve, rigid_body_modes
 from fem.model import Body, FEModel, Rigid
 from fem.recovery import nodal_average
-from fem.contact import contact_patch
+from fem.contact.patch import contact_patch
 from fem.verification import cantilever, gear_like, hertz_line, hertz_point
 
 __all__ = ["main", "bench_hertz", "hertz_row", "linear_solve_times"]

@@ -5,14 +5,14 @@ Steps (timings reported in ``FEResult.info.timings``):
 1. element stiffness (C3D8I-like or C3D8) and block assembly of K (``fem.elements.hex8``, ``fem.assembly``);
 2. supports by elimination, K_r = T^T K T, f_r = T^T (f - K u_p) + f_ref (``fem.constraints``);
 3. contact geometry from the undeformed mesh; candidate slave nodes g0 < search_gap, and the
-   seed (``fem.contact``);
+   seed (``fem.contact.search``);
 4. the reduced stiffness is bordered by the gap rows of the k candidate nodes,
 
        A = [K_r  G_r^T]      (symmetric indefinite; unknowns (q, mu), mu = -lambda),
            [G_r    0  ]
 
    and factored once with the Schur complement on C = (free rigid DOFs, gap rows):
-   S = [[H, -B^T], [-B, -W]] in the notation of ``fem.contact``, and the forward substitution
+   S = [[H, -B^T], [-B, -W]] in the notation of ``fem.contact.active_set``, and the forward substitution
    gives f^_F and the gaps g^ of the load with the free rigid DOFs clamped. The active-set
    penalty problem is solved on these k + n_F unknowns by dense algebra, and one backward
    substitution gives all DOFs (``fem.la.linsolve``): no refactorization per contact iteration;
@@ -33,7 +33,9 @@ from fem.errors import FEConvergenceError, FEInputError
 from fem import recovery as st
 from fem.assembly import assemble_blocks, surface_load
 from fem.constraints import known_names, reduction
-from fem.contact import contact_patch, contact_set, penalty_active_set
+from fem.contact.active_set import ReducedContact, penalty_active_set
+from fem.contact.patch import contact_patch
+from fem.contact.search import contact_set
 from fem.elements.hex8 import hex8_matrices
 from fem.la.linsolve import schur_system
 from fem.model import FEModel
@@ -133,7 +135,7 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
                 lam = np.zeros(len(cs.area))
                 lam[cand] = lam_c
                 return float(np.nanmax(cs.pressure(lam, mesh.n_points), initial=0.0))
-        sol = penalty_active_set(W, B, H, ghat, fhat, stiff, area, seed, model.contact, kdiag, peak)
+        sol = penalty_active_set(ReducedContact(W, B, H, ghat, fhat, kdiag), stiff, area, seed, model.contact, peak)
         xC = np.empty(len(C))
         xC[iF] = sol.u_free
         xC[ig] = -sol.lam  # bordered unknowns are -lambda: K u + G^T (-lambda) = f

@@ -10,7 +10,8 @@ import pytest
 import scipy.sparse as sp
 
 from fem import ContactOptions, solve
-from fem.contact import contact_patch, surface_mass
+from fem.contact.faces import surface_mass
+from fem.contact.patch import contact_patch
 from fem.verification import hertz_line, hertz_point
 from fem.errors import FEInputError
 

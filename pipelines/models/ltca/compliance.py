@@ -46,7 +46,7 @@ from scipy.spatial import cKDTree
 
 from fem.assembly import assemble_blocks
 from fem.la.condense import influence_matrix
-from fem.contact import bilinear, project_to_faces
+from fem.contact.faces import bilinear, project_to_faces
 from fem.elements.hex8 import hex8_matrices
 from fem.material import Material
 from mesher import Focus, MeshOptions, mesh_gear

@@ -41,7 +41,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
-from fem.contact import bilinear, project_to_faces, surface_mass
+from fem.contact.faces import bilinear, project_to_faces, surface_mass
 from fem.result import STRESS_RECOVERY, FEResult
 from fem.model import FEModel
 from fem.mesh.hexmesh import HexMesh

@@ -1,4 +1,4 @@
-"""Penalty contact between slave and master surfaces, solved on the Schur complement of the gaps.
+"""The constraints of the contact pairs: gaps, gap gradients, areas, penalties, candidates and seed.
 
 Geometry (small sliding, from the undeformed, TCA-positioned mesh). A point x_s of the slave
 surface is projected on the bilinear master faces, x_p = sum_b N_b(xi, eta) x_b, with the outward
@@ -42,64 +42,24 @@ by O(h^2) (measured at 3 elements per half-width: Hertz line -1.8 %, point -3.2 
 the node-to-node variation of the forces (measured +45 % at the Hertz line peak on the averaged-
 gap forces). The recovered peak converges from above and
 the lumped one from below on the gear model (docs/contact_pressure.md).
-
-Patch (``contact_patch``). The Hertz-equivalent contact ellipse of nodal forces F_a at x_a: the
-resultant P, the centre c = sum F x / P, and the tangential second moments mu = sum F (t.(x - c))^2 / P
-along the principal directions t. A semi-ellipsoidal pressure has int x^2 p dA / P = a^2 / 5, an
-elliptic line pressure a^2 / 4 across (uniform along: L^2 / 12 = l^2 / 3 with l the half-length),
-so a = sqrt(5 mu) (point), b = sqrt(4 mu) (line). Integral quantities of the forces, they do not
-jump by an element when the edge of the contact passes a node.
-
-Reduced problem (``fem.analysis``). The reduced stiffness bordered by the gap rows of the k
-candidate nodes is factored once with its Schur complement on the free rigid DOFs F and the gap
-rows, which gives directly
-
-    W = G K_RR^-1 G^T         (gap compliance with the free rigid DOFs clamped),
-    B = G K_RR^-1 K_RF - G_F  (gap change per free rigid DOF, sign as below),
-    H = K_FF - K_FR K_RR^-1 K_RF,
-    g^ = g0 + G u_p + G K_RR^-1 f_R,   f^_F = f_F - K_FR K_RR^-1 f_R,
-
-so that the gaps and the equilibrium of the free rigid DOFs read
-
-    g = g^ + W lambda - B u_F,         H u_F + B^T lambda = f^_F.
-
-H is singular for a body that is free before contact closes (a free planet); the bordered system
-on an active set A,
-
-    [ W_AA + K_A^-1   -B_A ] [lambda_A]   [ -g^_A ]
-    [ -B_A^T          -H   ] [  u_F   ] = [ -f^_F ],
-
-is regular once the active contacts hold the free rotations. Primal-dual active set iteration
-(semismooth Newton on the penalty law): A <- {g < 0} until A repeats. Each iteration costs a
-dense solve of the size of A: no sparse refactorization. The penalty may then be raised (no
-refactorization either) until the largest penetration is below the tolerance, and the peak
-pressure is compared with a solve at twice the penalty.
 """
 
 from __future__ import annotations
 
-import contextlib
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg as sla
 import scipy.sparse as sp
 from scipy.spatial import cKDTree
 
-from fem.mesh.hexmesh import HEX_FACES, HexMesh
-from fem.errors import FEConvergenceError, FEError, FEInputError
-
-try:
-    from threadpoolctl import threadpool_limits
-except ImportError:  # pragma: no cover - optional: without it the dense solves use the BLAS default threads
-    threadpool_limits = None
-
 from fem.assembly import face_node_areas
 from fem.constraints import known_names
-from fem.model import ContactOptions, ContactPair
+from fem.contact.faces import bilinear, project_to_faces, surface_mass
+from fem.errors import FEInputError
+from fem.mesh.hexmesh import HEX_FACES, HexMesh
+from fem.model import ContactPair
 
-__all__ = ["ContactSet", "contact_set", "ActiveSetSolution", "active_set", "penalty_active_set", "bilinear",
-           "project_to_faces", "surface_mass", "ContactPatch", "contact_patch"]
+__all__ = ["MAX_MASTER_COARSENESS", "ContactSet", "contact_set"]
 
 _OPPOSITE = np.array([1, 0, 4, 5, 2, 3])
 
@@ -170,35 +130,6 @@ def _faces(mesh: HexMesh, name: str, field: str) -> np.ndarray:
     return fs
 
 
-def bilinear(xi, eta):
-    """Shape functions of a 4-node face and their derivatives at (xi, eta): N, dN/dxi, dN/deta (..., 4)."""
-    N = 0.25 * np.stack([(1 - xi) * (1 - eta), (1 + xi) * (1 - eta), (1 + xi) * (1 + eta), (1 - xi) * (1 + eta)], -1)
-    dxi = 0.25 * np.stack([-(1 - eta), (1 - eta), (1 + eta), -(1 + eta)], -1)
-    deta = 0.25 * np.stack([-(1 - xi), -(1 + xi), (1 + xi), (1 - xi)], -1)
-    return N, dxi, deta
-
-
-def project_to_faces(xs: np.ndarray, X: np.ndarray, iters: int = 12, limit: float = 2.0):
-    """Closest-point projection of points xs (p, 3) on bilinear faces X (p, 4, 3): xi, eta, x_p.
-
-    The face coordinates are kept in [-limit, limit] (1: on the face itself; 2: its extension,
-    which lets the contact search slide across face boundaries)."""
-    xi = np.zeros(len(xs))
-    eta = np.zeros(len(xs))
-    for _ in range(iters):
-        N, dxi, deta = bilinear(xi, eta)
-        x = np.einsum("pa,pai->pi", N, X)
-        t1 = np.einsum("pa,pai->pi", dxi, X)
-        t2 = np.einsum("pa,pai->pi", deta, X)
-        r = x - xs
-        a11, a12, a22 = (t1 * t1).sum(1), (t1 * t2).sum(1), (t2 * t2).sum(1)
-        b1, b2 = -(t1 * r).sum(1), -(t2 * r).sum(1)
-        det = a11 * a22 - a12**2
-        xi = np.clip(xi + (a22 * b1 - a12 * b2) / det, -limit, limit)
-        eta = np.clip(eta + (a11 * b2 - a12 * b1) / det, -limit, limit)
-    N, dxi, deta = bilinear(xi, eta)
-    return xi, eta, np.einsum("pa,pai->pi", N, X)
-
 
 def _slave_points(mesh: HexMesh, fs: np.ndarray, order: int):
     """Contact points of slave faces: nodes (order 0) or order x order Gauss points per face.
@@ -230,19 +161,6 @@ def _slave_points(mesh: HexMesh, fs: np.ndarray, order: int):
     return (np.repeat(sf, q, axis=0), np.tile(N, (len(sf), 1)), pts.reshape(-1, 3), (dA * wq).ravel(),
             (n / dA[..., None]).reshape(-1, 3), np.repeat(h_face, q))
 
-
-def surface_mass(points: np.ndarray, faces: np.ndarray) -> sp.csr_matrix:
-    """Consistent mass M_ab = int N_a N_b dA of bilinear faces (f, 4) [mm^2], 2 x 2 Gauss points; (n, n)."""
-    g, wg = np.polynomial.legendre.leggauss(2)
-    xi, eta = (a.ravel() for a in np.meshgrid(g, g, indexing="ij"))
-    N, dxi, deta = bilinear(xi, eta)
-    X = points[faces]
-    dA = np.linalg.norm(np.cross(np.einsum("qa,fai->fqi", dxi, X), np.einsum("qa,fai->fqi", deta, X)), axis=-1)
-    Me = np.einsum("fq,q,qa,qb->fab", dA, np.outer(wg, wg).ravel(), N, N)
-    rows = np.repeat(faces, 4, axis=1).ravel()
-    cols = np.tile(faces, (1, 4)).ravel()
-    n = len(points)
-    return sp.csr_matrix((Me.ravel(), (rows, cols)), shape=(n, n))
 
 
 MAX_MASTER_COARSENESS = 1.3
@@ -355,155 +273,3 @@ def contact_set(mesh: HexMesh, pairs: tuple[ContactPair, ...], E_cell: np.ndarra
     mass = None if not masses else sum(masses[1:], masses[0]).tocsr()
     return ContactSet(cat["pair"].astype(np.int64), cat["node"].astype(np.int64), cat["area"], cat["normal"], cat["gap0"],
                       cat["penalty"], G, cat["candidate"].astype(bool), cat["seed"].astype(bool), shape, mass)
-
-
-@dataclass(frozen=True)
-class ContactPatch:
-    """Hertz-equivalent contact patch of nodal forces (module docstring, "Patch"): force [N], centre [mm],
-    semi-axes a >= b [mm] and their unit directions."""
-
-    force: float
-    centre: tuple[float, float, float]
-    semi_axes: tuple[float, float]
-    directions: tuple[tuple[float, float, float], tuple[float, float, float]]
-
-
-PATCH_FACTORS = {"point": (5.0, 5.0), "line": (3.0, 4.0)}
-
-
-def contact_patch(points: np.ndarray, forces: np.ndarray, normal, centre=None, kind: str = "point", major=None) -> ContactPatch:
-    """Semi-axes of the Hertz pressure with the same resultant and second moments as the nodal forces.
-
-    points (n, 3) [mm], forces (n,) >= 0 [N], normal (3,) the common normal; ``centre`` [mm]
-    (default the force centroid; give the symmetry point of a half or quarter model); ``kind``
-    'point' (semi-ellipsoid: a^2 = 5 mu) or 'line' (semi-ellipse across, uniform along: b^2 = 4 mu,
-    half-length^2 = 3 mu), mu the second moments about the centre along the axes. The axes are the
-    eigenvectors of the tangential second-moment tensor, or ``major`` (3,) and n x major when given.
-    """
-    if kind not in PATCH_FACTORS:
-        raise FEInputError("kind", kind, "'point' or 'line'")
-    F = np.clip(np.asarray(forces, float), 0.0, None)
-    P = float(F.sum())
-    if P <= 0.0:
-        nan = float("nan")
-        return ContactPatch(0.0, (nan, nan, nan), (0.0, 0.0), ((nan,) * 3, (nan,) * 3))
-    x = np.asarray(points, float)
-    c = (F @ x) / P if centre is None else np.asarray(centre, float)
-    n = np.asarray(normal, float) / np.linalg.norm(normal)
-    d = x - c
-    d -= np.outer(d @ n, n)  # tangential offsets
-    S = np.einsum("p,pi,pj->ij", F, d, d) / P
-    if major is None:
-        mu, vec = np.linalg.eigh(S)  # ascending; the smallest is along the normal
-        e1, e2 = vec[:, 2], vec[:, 1]
-    else:
-        e1 = np.asarray(major, float) - (np.asarray(major, float) @ n) * n
-        e1 /= np.linalg.norm(e1)
-        e2 = np.cross(n, e1)
-    fa, fb = PATCH_FACTORS[kind]
-    a, b = np.sqrt(fa * max(float(e1 @ S @ e1), 0.0)), np.sqrt(fb * max(float(e2 @ S @ e2), 0.0))
-    return ContactPatch(P, tuple(float(v) for v in c), (float(a), float(b)),
-                        (tuple(float(v) for v in e1), tuple(float(v) for v in e2)))
-
-
-@dataclass(frozen=True, eq=False)
-class ActiveSetSolution:
-    """Contact forces lambda [N], free rigid DOFs, gaps [mm], active set, iterations, penalty scale."""
-
-    lam: np.ndarray
-    u_free: np.ndarray
-    gap: np.ndarray
-    active: np.ndarray
-    iterations: int
-    scale: float = 1.0
-    penalty_change: float = float("nan")
-
-
-def _solve_set(W, B, H, ghat, fhat, k, A, h_scale):
-    a = np.flatnonzero(A)
-    nF = len(fhat)
-    lam = np.zeros(len(ghat))
-    if len(a):
-        P = W[np.ix_(a, a)] + np.diag(1.0 / k[a])
-        try:
-            cf = sla.cho_factor(P)
-        except np.linalg.LinAlgError:
-            raise FEError("contact compliance matrix is not positive definite on the active set") from None
-        Ba = B[a]
-        Z = sla.cho_solve(cf, np.column_stack([Ba, ghat[a]])) if nF else sla.cho_solve(cf, ghat[a][:, None])
-    else:
-        Ba = np.zeros((0, nF))
-        Z = np.zeros((0, nF + 1))
-    uF = np.zeros(nF)
-    if nF:
-        Hs = H + Ba.T @ Z[:, :nF]
-        # a free rigid DOF is held if its condensed stiffness is not round-off of its own
-        # stiffness with everything else clamped (h_scale = diag of the reduced K there)
-        loose = np.diag(Hs) <= 1e-9 * h_scale
-        if loose.any():
-            raise FEError(
-                f"free rigid DOF(s) {np.flatnonzero(loose).tolist()} are not held by any active contact: "
-                "the contact does not close (check the contact seed, the search gap and the load direction)"
-            )
-        uF = np.linalg.solve(Hs, fhat + Ba.T @ Z[:, nF])
-    if len(a):
-        # lambda_A = P^-1 (B_A u_F - g^_A)
-        lam[a] = (Z[:, :nF] @ uF if nF else 0.0) - Z[:, -1]
-    return lam, uF
-
-
-def active_set(W, B, H, ghat, fhat, k, active0, max_iterations: int, h_scale) -> ActiveSetSolution:
-    """Primal-dual active-set iteration of the penalty contact problem (see module docstring)."""
-    A = np.asarray(active0, bool).copy()
-    seen = {A.tobytes()}
-    for it in range(1, max_iterations + 1):
-        lam, uF = _solve_set(W, B, H, ghat, fhat, k, A, h_scale)
-        g = ghat + W @ lam - (B @ uF if len(uF) else 0.0)
-        A_new = g < 0.0
-        changed = A_new != A
-        if not changed.any():
-            return ActiveSetSolution(lam, uF, g, A, it)
-        viol = float(np.abs(g[changed]).max())  # [mm] gap of the nodes that switch
-        key = A_new.tobytes()
-        if key in seen:
-            raise FEConvergenceError("contact active set", "a repeated set (cycling)", viol, it)
-        seen.add(key)
-        A = A_new
-    raise FEConvergenceError("contact active set", f"{int(changed.sum())} nodes still switching", viol, max_iterations)
-
-
-def penalty_active_set(W, B, H, ghat, fhat, k, area, active0, opts: ContactOptions, h_scale, peak=None) -> ActiveSetSolution:
-    """Active set, with the penalty raised until penetration <= tolerance, then the doubling check.
-
-    ``peak(lam)`` [MPa]: the peak pressure the doubling check compares (default max lambda / area)."""
-    peak = peak or (lambda lam: float(np.max(lam / area)))
-    # the dense active-set matrices are small (hundreds of rows): threaded BLAS only adds synchronization,
-    # which on a loaded machine costs seconds per Cholesky factorization (measured 0.3 s against 0.1 ms at 150 rows)
-    with threadpool_limits(1, user_api="blas") if threadpool_limits else contextlib.nullcontext():
-        return _penalty_active_set(W, B, H, ghat, fhat, k, area, active0, opts, h_scale, peak)
-
-
-def _penalty_active_set(W, B, H, ghat, fhat, k, area, active0, opts, h_scale, peak) -> ActiveSetSolution:
-    scale = 1.0
-    sol = active_set(W, B, H, ghat, fhat, k, active0, opts.max_iterations, h_scale)
-    pen = float(np.max(-sol.gap[sol.active], initial=0.0))
-    raises = 0
-    while pen > opts.max_penetration:
-        raises += 1
-        if raises > 12:
-            raise FEConvergenceError("penalty penetration", f"max_penetration = {opts.max_penetration} mm", pen, raises)
-        scale *= max(2.0, 1.5 * pen / opts.max_penetration)
-        sol = active_set(W, B, H, ghat, fhat, scale * k, sol.active, opts.max_iterations, h_scale)
-        pen = float(np.max(-sol.gap[sol.active], initial=0.0))
-    change = float("nan")
-    if opts.penalty_check and sol.active.any():
-        for _ in range(8):
-            sol2 = active_set(W, B, H, ghat, fhat, 2.0 * scale * k, sol.active, opts.max_iterations, h_scale)
-            p1, p2 = peak(sol.lam), peak(sol2.lam)
-            change = abs(p2 - p1) / p1
-            if change < opts.penalty_check_tol:
-                break
-            scale, sol = 2.0 * scale, sol2
-        else:
-            raise FEConvergenceError("penalty doubling check", f"penalty_check_tol = {opts.penalty_check_tol}", change, 8)
-    return ActiveSetSolution(sol.lam, sol.u_free, sol.gap, sol.active, sol.iterations, scale, change)
