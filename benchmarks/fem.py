@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 from skfem import Basis, ElementHex2, ElementHexS2, FacetBasis, LinearForm, MeshHex, asm
 
-from fem import STEEL, ContactOptions, solve
+from fem import STEEL, ContactOptions, SolverOptions, solve
 from fem.assembly import assemble_blocks
 from fem.constraints import reduction
 from fem.elements.hex8 import SKFEM_FROM_VTK, hex8_matrices, isotropic_stiffness
@@ -37,11 +37,12 @@ from fem.la.linsolve import linear_solve, rigid_body_modes
 from fem.model import Body, FEModel, Rigid
 from fem.recovery import nodal_average
 from fem.contact.patch import contact_patch
-from fem.verification import cantilever, gear_like, hertz_line, hertz_point
+from fem.mesh.primitives import SplineMesh
+from fem.verification import ModelSetup, cantilever, gear_like, hertz_line, hertz_point
 
 __all__ = ["main", "bench_hertz", "hertz_row", "linear_solve_times"]
 
-GEAR_150K = dict(h=0.115, fine_width=0.72, hz=0.65, z_fine_width=3.0, growth=1.6, h_max=3.5)  # 147k DOF
+GEAR_150K = SplineMesh(h=0.115, fine_width=0.72, hz=0.65, z_fine_width=3.0, growth=1.6, h_max=3.5)  # 147k DOF
 
 
 # ---------------------------------------------------------------------------------------------
@@ -113,7 +114,8 @@ def bench_elements(quick: bool) -> list[dict]:
     for distortion in (0.0, 0.3):
         results = {}
         for el, n in cases:
-            mesh, model, ref = cantilever(length=L, depth=d, width=d, n_depth=n, element="hex8i" if el == "hexs2" or el == "hex2" else el)
+            mesh, model, ref = cantilever(length=L, depth=d, width=d, n_depth=n, setup=ModelSetup(
+                solver=SolverOptions(element="hex8i" if el == "hexs2" or el == "hex2" else el)))
             pts = _distort(mesh, distortion) if distortion and n >= 2 else mesh.points
             if el in ("hex8", "hex8i"):
                 out = _linear_cantilever(mesh, model, pts)
@@ -145,11 +147,11 @@ def _half_width(mesh, r, ref, kind: str) -> float:
 
 def hertz_row(kind: str, n: float, points: str = "gauss", **kw) -> dict:
     """One Hertz benchmark solve: peak pressure error, half-width errors (active area; force moments), time."""
-    opts = ContactOptions(points=points)
+    setup = ModelSetup(contact=ContactOptions(points=points))
     if kind == "line":
-        mesh, model, ref = hertz_line(elements_per_halfwidth=n, options=opts, **kw)
+        mesh, model, ref = hertz_line(elements_per_halfwidth=n, setup=setup, **kw)
     else:
-        mesh, model, ref = hertz_point(elements_per_radius=n, options=opts, **kw)
+        mesh, model, ref = hertz_point(elements_per_radius=n, setup=setup, **kw)
     r = solve(mesh, model)
     p = r.pairs[0]
     area_a = p.area / ref["thickness"] if kind == "line" else np.sqrt(4 * p.area / np.pi)
@@ -170,7 +172,7 @@ def bench_hertz(quick: bool) -> dict:
     combos = (("nodes", 0), ("nodes", 2), ("gauss", 2)) + ((("nodes", 3), ("gauss", 3)) if not quick else ())
     for points, q in combos:
         for ratio in ((0.67, 1.0) if quick else (0.5, 0.67, 0.8, 1.0, 1.25)):
-            mesh, model, ref = hertz_line(block_ratio=ratio, options=ContactOptions(quadrature=q, points=points))
+            mesh, model, ref = hertz_line(block_ratio=ratio, setup=ModelSetup(contact=ContactOptions(quadrature=q, points=points)))
             r = solve(mesh, model)
             front = np.flatnonzero((r.contact_pressure > 0) & np.isclose(mesh.points[:, 2], 0.0))
             x = mesh.points[front, 0] / ref["a"]
@@ -179,7 +181,7 @@ def bench_hertz(quick: bool) -> dict:
             row = {"points": points, "quadrature": q, "ratio": ratio, "line_p_err": r.pairs[0].max_pressure / ref["p0"] - 1,
                    "line_profile": ripple}
             if not quick or ratio == 1.0:
-                mesh, model, ref = hertz_point(block_ratio=ratio, options=ContactOptions(quadrature=q, points=points))
+                mesh, model, ref = hertz_point(block_ratio=ratio, setup=ModelSetup(contact=ContactOptions(quadrature=q, points=points)))
                 r = solve(mesh, model)
                 row["point_p_err"] = r.pairs[0].max_pressure / ref["p0"] - 1
             formulation.append(row)
@@ -198,10 +200,10 @@ def bench_hertz(quick: bool) -> dict:
 
 def bench_speed(quick: bool) -> dict:
     out = {}
-    kw = dict(GEAR_150K)
+    sizes = GEAR_150K
     if quick:
-        kw.update(h=0.3, fine_width=1.0, hz=1.0, z_fine_width=4.0)
-    mesh, model, ref = gear_like(mesh_kw=kw)
+        sizes = dataclasses.replace(sizes, h=0.3, fine_width=1.0, hz=1.0, z_fine_width=4.0)
+    mesh, model, ref = gear_like(sizes=sizes)
     runs = []
     for _ in range(1 if quick else 2):
         r = solve(mesh, model)
@@ -254,7 +256,7 @@ def linear_solve_times(mesh, held: FEModel, methods=("pardiso", "amg"), repeats:
 
 def bench_superlu(quick: bool) -> dict:
     """SuperLU against PARDISO on a smaller gear-like mesh (SuperLU > 10 min at 209k DOF, MEASURED.md)."""
-    mesh, model, _ = gear_like(mesh_kw=dict(h=0.5, fine_width=1.0, hz=1.25, z_fine_width=5.0, growth=1.8, h_max=5.0))
+    mesh, model, _ = gear_like(sizes=SplineMesh(h=0.5, fine_width=1.0, hz=1.25, z_fine_width=5.0, growth=1.8, h_max=5.0))
     res = {"dofs": 3 * mesh.n_points}
 
     for method in ("pardiso", "superlu"):

@@ -17,12 +17,14 @@ Bodies built here:
   for Hertz line contact.
 - ``sphere_on_block``: a quarter of a spherical cap on a block, for Hertz point contact.
 - ``spline_coupling``: a synthetic gear-like pair: a hub with teeth, double-crowned drive flanks,
-  tied to a reference node on its axis, in contact with the teeth of a fixed sleeve.
+  tied to a reference node on its axis, in contact with the teeth of a fixed sleeve (geometry
+  :class:`SplineCoupling`, element sizes :class:`SplineMesh`).
 """
 
 from __future__ import annotations
 
 import dataclasses
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -41,6 +43,8 @@ __all__ = [
     "boundary_faces",
     "cylinder_on_block",
     "sphere_on_block",
+    "SplineCoupling",
+    "SplineMesh",
     "spline_coupling",
 ]
 
@@ -248,35 +252,73 @@ def _rename(mesh: HexMesh, names: dict[str, str], keep_only: bool = False) -> He
 # Synthetic gear-like model
 
 
-def spline_coupling(*, teeth: int = 3, pitch_deg: float = 30.0, tooth_deg: float = 12.0, gap_deg: float = 0.0,
-                    radii=(40.0, 46.0, 56.0, 48.0, 52.0, 64.0), width: float = 20.0, crown_profile: float = 20.0,
-                    crown_lead: float = 400.0, backlash=(0.0, 0.002, 0.005), h: float = 0.1, fine_width: float = 1.0,
-                    hz: float = 0.4, z_fine_width: float = 3.0, growth: float = 1.35, h_max: float = 2.5) -> HexMesh:
+@dataclass(frozen=True)
+class SplineCoupling:
+    """Geometry of :func:`spline_coupling`: hub with external teeth driving the internal teeth of a sleeve.
+
+    ``teeth`` teeth at ``pitch_deg``, each ``tooth_deg`` wide, the sleeve flanks ``gap_deg`` beyond
+    the hub's drive flanks [deg]; radii = (hub bore R0, hub root R1, hub tip R2, sleeve tip Rt,
+    contact radius rc, sleeve outer R4) [mm]; face ``width`` [mm]; the drive flanks crowned with
+    radii ``crown_profile`` and ``crown_lead`` [mm] and receded by ``backlash`` [mm], one per tooth.
+    """
+
+    teeth: int = 3
+    pitch_deg: float = 30.0
+    tooth_deg: float = 12.0
+    gap_deg: float = 0.0
+    radii: tuple = (40.0, 46.0, 56.0, 48.0, 52.0, 64.0)
+    width: float = 20.0
+    crown_profile: float = 20.0
+    crown_lead: float = 400.0
+    backlash: tuple = (0.0, 0.002, 0.005)
+
+    def __post_init__(self):
+        object.__setattr__(self, "radii", tuple(self.radii))
+        object.__setattr__(self, "backlash", tuple(self.backlash))
+        R0, R1, R2, Rt, rc, R4 = self.radii
+        R3 = R2 + (Rt - R1)  # sleeve root: the same radial clearance as at the hub root
+        if not (R0 < R1 < Rt < rc < R2 < R3 < R4):
+            raise FEInputError("spline_coupling.radii", self.radii, "R0 < R1 < Rt < rc < R2 and R3 = R2 + Rt - R1 < R4")
+        if len(self.backlash) != self.teeth:
+            raise FEInputError("spline_coupling.backlash", self.backlash, f"{self.teeth} values [mm], one per tooth")
+
+
+@dataclass(frozen=True)
+class SplineMesh:
+    """Element sizes of :func:`spline_coupling` [mm]: h over ``fine_width`` around the contact in the profile (r)
+    and depth (theta) directions, hz over ``z_fine_width`` along the face width, growing by ``growth`` up
+    to h_max elsewhere."""
+
+    h: float = 0.1
+    fine_width: float = 1.0
+    hz: float = 0.4
+    z_fine_width: float = 3.0
+    growth: float = 1.35
+    h_max: float = 2.5
+
+
+def spline_coupling(coupling: SplineCoupling = SplineCoupling(), sizes: SplineMesh = SplineMesh()) -> HexMesh:
     """Hub with external teeth driving the internal teeth of a sleeve about the z axis (gear-like).
 
-    radii = (hub bore R0, hub root R1, hub tip R2, sleeve tip Rt, contact radius rc, sleeve outer
-    R4) [mm]; sleeve teeth span r in [Rt, R3], R3 = R2 + (Rt - R1) (same root clearance as the hub). Hub
+    Sleeve teeth span r in [Rt, R3], R3 = R2 + (Rt - R1) (same root clearance as the hub). Hub
     tooth k spans theta in theta_k +- tooth/2; its drive flank (theta_k + tooth/2) is
     double-crowned: it recedes by (r - rc)^2 / (2 crown_profile) + (z - width/2)^2 / (2 crown_lead)
     [mm] plus backlash[k] [mm]. The facing sleeve flank is the radial plane theta_k + tooth/2 +
     gap. Contact starts at (rc, width/2) of tooth 0 and closes under a positive torque about +z.
-
-    Mesh: size h [mm] over ``fine_width`` around the contact in the profile (r) and depth
-    (theta) directions, hz over ``z_fine_width`` along the face width, growing by ``growth`` up to
-    h_max elsewhere.
+    Geometry and names: :class:`SplineCoupling`; element sizes: :class:`SplineMesh`.
 
     Face sets: ``hub/bore``, ``hub/tooth<k>/flank`` (drive flanks), ``hub/tooth<k>/fillet``
     (faces of the tooth root region on the loaded side); ``sleeve/outer``,
     ``sleeve/tooth<k>/flank``, ``sleeve/tooth<k>/fillet``. Point set ``hub/tooth<k>/contact_point``:
     the flank node at (rc, width/2). Reference point ``hub`` at the origin, axis z.
     """
-    R0, R1, R2, Rt, rc, R4 = radii
-    R3 = R2 + (Rt - R1)  # sleeve root: the same radial clearance as at the hub root
-    if not (R0 < R1 < Rt < rc < R2 < R3 < R4):
-        raise FEInputError("spline_coupling.radii", radii, "R0 < R1 < Rt < rc < R2 and R3 = R2 + Rt - R1 < R4")
-    if len(backlash) != teeth:
-        raise FEInputError("spline_coupling.backlash", backlash, f"{teeth} values [mm], one per tooth")
-    pitch, tw, gap = np.radians([pitch_deg, tooth_deg, gap_deg])
+    teeth, width, crown_profile, crown_lead, backlash = (coupling.teeth, coupling.width, coupling.crown_profile,
+                                                         coupling.crown_lead, coupling.backlash)
+    h, fine_width, hz, z_fine_width, growth, h_max = (sizes.h, sizes.fine_width, sizes.hz, sizes.z_fine_width,
+                                                      sizes.growth, sizes.h_max)
+    R0, R1, R2, Rt, rc, R4 = coupling.radii
+    R3 = R2 + (Rt - R1)
+    pitch, tw, gap = np.radians([coupling.pitch_deg, coupling.tooth_deg, coupling.gap_deg])
     centres = (np.arange(teeth) - (teeth - 1) / 2.0) * pitch
     flanks = centres + tw / 2  # hub drive flanks; sleeve flanks at + gap
     hs = h / rc  # angular size of the fine elements at the contact radius

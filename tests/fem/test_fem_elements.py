@@ -5,11 +5,11 @@ import numpy as np
 from skfem import Basis, ElementHex1, ElementVector, MeshHex, asm
 from skfem.models.elasticity import linear_elasticity
 
-from fem import STEEL, solve
+from fem import STEEL, SolverOptions, solve
 from fem.assembly import assemble_blocks
 from fem.elements.hex8 import SKFEM_FROM_VTK, hex8_matrices
 from fem.recovery import gauss_stress
-from fem.verification import cantilever
+from fem.verification import ModelSetup, cantilever
 from fem.mesh import primitives as prim
 from fem.mesh.hexmesh import HEX_FACES
 
@@ -59,7 +59,8 @@ def test_hex8i_patch_test_on_distorted_mesh():
 
 
 def _beam(element, n_depth):
-    mesh, model, ref = cantilever(length=12.0, depth=4.0, width=4.0, n_depth=n_depth, element=element)
+    mesh, model, ref = cantilever(length=12.0, depth=4.0, width=4.0, n_depth=n_depth,
+                                  setup=ModelSetup(solver=SolverOptions(element=element)))
     r = solve(mesh, model)
     p = mesh.points
     top = np.flatnonzero(np.isclose(p[:, 0], ref["length"] / 2) & np.isclose(p[:, 1], ref["depth"] / 2))

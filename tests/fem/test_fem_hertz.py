@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from fem import ContactOptions, solve
-from fem.verification import hertz_line, hertz_point
+from fem.verification import ModelSetup, hertz_line, hertz_point
 from fem.errors import FEInputError
 
 
@@ -46,7 +46,7 @@ def test_hertz_line_pressure_profile(line):
 
 def test_hertz_line_node_to_surface_on_matching_meshes():
     """Node-to-surface (quadrature 0) is kept for coincident meshes, where it is exact enough."""
-    mesh, model, ref = hertz_line(block_ratio=1.0, options=ContactOptions(quadrature=0))
+    mesh, model, ref = hertz_line(block_ratio=1.0, setup=ModelSetup(contact=ContactOptions(quadrature=0)))
     pair = solve(mesh, model).pairs[0]
     assert abs(pair.max_pressure / ref["p0"] - 1.0) < 0.03  # measured -0.2 %
 

@@ -58,7 +58,7 @@ def test_inverted_cell_is_rejected():
 
 
 def test_spline_coupling_sets():
-    m = prim.spline_coupling(h=0.5, fine_width=1.0, hz=1.25, z_fine_width=5.0, growth=1.8, h_max=5.0)
+    m = prim.spline_coupling(sizes=prim.SplineMesh(h=0.5, fine_width=1.0, hz=1.25, z_fine_width=5.0, growth=1.8, h_max=5.0))
     assert m.bodies == ("hub", "sleeve")
     for body in m.bodies:
         for k in range(3):

@@ -4,10 +4,11 @@ import numpy as np
 import pytest
 
 from fem import solve, torque_balance_error
+from fem.mesh.primitives import SplineMesh
 from fem.verification import block_chain, gear_like
 from fem.errors import FEError
 
-COARSE = dict(h=0.5, fine_width=1.0, hz=1.25, z_fine_width=5.0, growth=1.8, h_max=5.0)  # 27k DOF
+COARSE = SplineMesh(h=0.5, fine_width=1.0, hz=1.25, z_fine_width=5.0, growth=1.8, h_max=5.0)  # 27k DOF
 
 
 def test_floating_body_between_two_contacts():
@@ -28,7 +29,7 @@ def test_floating_body_between_two_contacts():
 
 @pytest.fixture(scope="module")
 def gear():
-    mesh, model, ref = gear_like(mesh_kw=COARSE)
+    mesh, model, ref = gear_like(sizes=COARSE)
     return mesh, model, ref, solve(mesh, model)
 
 
@@ -58,9 +59,9 @@ def test_gear_like_load_share(gear):
 
 def test_gear_like_open_start_does_not_depend_on_the_seed():
     """All teeth open at the start (hub singular): seeded at the TCA point or at the smallest gap."""
-    mesh, model, ref = gear_like(mesh_kw=COARSE, backlash=(0.003, 0.004, 0.006), contact_point=True)
+    mesh, model, ref = gear_like(sizes=COARSE, backlash=(0.003, 0.004, 0.006), contact_point=True)
     r1 = solve(mesh, model)
-    mesh, model, ref = gear_like(mesh_kw=COARSE, backlash=(0.003, 0.004, 0.006), contact_point=False)
+    mesh, model, ref = gear_like(sizes=COARSE, backlash=(0.003, 0.004, 0.006), contact_point=False)
     r2 = solve(mesh, model)
     f1 = np.array([p.force for p in r1.pairs])
     f2 = np.array([p.force for p in r2.pairs])
@@ -70,7 +71,7 @@ def test_gear_like_open_start_does_not_depend_on_the_seed():
 
 def test_free_body_that_cannot_close_raises():
     """A torque that opens the teeth leaves the hub's rotation unheld: a clear error, no result."""
-    mesh, model, ref = gear_like(torque=-5e5, mesh_kw=COARSE)
+    mesh, model, ref = gear_like(torque=-5e5, sizes=COARSE)
     with pytest.raises(FEError, match="not held by any active contact"):
         solve(mesh, model)
 
@@ -78,7 +79,7 @@ def test_free_body_that_cannot_close_raises():
 def test_gear_like_result_does_not_depend_on_the_candidate_zone(gear):
     """A wider candidate zone (more gap rows in the Schur complement) gives the same contact."""
     mesh, model, ref, r = gear
-    mesh, model, ref = gear_like(mesh_kw=COARSE, search_gap=0.3)
+    mesh, model, ref = gear_like(sizes=COARSE, search_gap=0.3)
     r3 = solve(mesh, model)
     assert r3.info.candidates > r.info.candidates
     assert np.allclose([p.force for p in r3.pairs], [p.force for p in r.pairs], rtol=1e-8)

@@ -5,10 +5,10 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from fem import solve
+from fem import SolverOptions, solve
 from fem.la import pardiso
 from fem.la.linsolve import linear_solve, rigid_body_modes, schur_system
-from fem.verification import cantilever, hertz_line
+from fem.verification import ModelSetup, cantilever, hertz_line
 
 needs_mkl = pytest.mark.skipif(not pardiso.available(), reason="MKL PARDISO not loadable here")
 
@@ -38,9 +38,9 @@ def test_pardiso_schur_against_dense(definite):
 
 @needs_mkl
 def test_superlu_fallback_matches_pardiso():
-    mesh, model, _ = hertz_line(elements_per_halfwidth=5.0, solver="pardiso")
+    mesh, model, _ = hertz_line(elements_per_halfwidth=5.0, setup=ModelSetup(solver=SolverOptions("pardiso")))
     r1 = solve(mesh, model)
-    mesh, model, _ = hertz_line(elements_per_halfwidth=5.0, solver="superlu")
+    mesh, model, _ = hertz_line(elements_per_halfwidth=5.0, setup=ModelSetup(solver=SolverOptions("superlu")))
     r2 = solve(mesh, model)
     assert r2.info.solver == "superlu"
     scale = np.abs(r1.displacement).max()
