@@ -1,6 +1,6 @@
 """Linear elasticity, penalty contact, rigid bodies and loads, stress recovery.
 
-``solve(mesh, model) -> FEResult`` on a :class:`mesher.HexMesh`; the model names bodies with
+``solve(mesh, model) -> FEResult`` on a :class:`fem.mesh.HexMesh`; the model names bodies with
 their supports (``Fixed``, ``Rigid``) and loads (``Traction``, torques), materials, contact
 pairs and options. See ``fem.solve`` for the steps and each module for its maths.
 """

@@ -1,6 +1,6 @@
 """The finite-element model: bodies, their supports and loads, contact pairs and solver options.
 
-A model refers to a :class:`mesher.HexMesh` only by names: bodies by ``mesh.bodies``, sets by
+A model refers to a :class:`fem.mesh.HexMesh` only by names: bodies by ``mesh.bodies``, sets by
 ``"<body>/<set>"`` keys of ``mesh.point_sets`` or ``mesh.face_sets`` (a face set stands for its
 nodes where nodes are needed), reference nodes by keys of ``mesh.reference_points``.
 
