@@ -50,7 +50,7 @@ def test_influence_matrix_matches_fem_solve_and_beam_theory():
     r = solve(mesh, model)  # the same load through the full FE path (Traction, supports by elimination)
     fe_tip = -r.displacement[tip, 1].mean()
     assert C[0, 0] == pytest.approx(fe_tip, rel=1e-9)  # one linear system, two code paths: round-off only
-    # Timoshenko tip deflection; the clamped 3D solid is up to 4 % stiffer (band of tests/fem/test_fem_elements.py)
+    # Timoshenko tip deflection; the clamped 3D solid is up to 4 % stiffer (band of tests/fem/elements/test_hex8.py)
     assert 0.96 <= C[0, 0] / ref["tip_timoshenko"] <= 1.0
     assert info["loads"] == 1
 
