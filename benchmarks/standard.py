@@ -63,7 +63,7 @@ def main(argv=None) -> int:
     al = path_of_contact(c.pair).alpha_wt
     rho = 1.0 / (1.0 / (g1.r_b * math.tan(al)) + 1.0 / (g2.r_b * math.tan(al)))
     w = c.torque / g2.r_b / g1.face_width
-    p0 = math.sqrt(w * c.fe.E / (2 * (1 - c.fe.nu ** 2)) / (math.pi * rho))
+    p0 = math.sqrt(w * c.fe.material.E / (2 * (1 - c.fe.material.nu ** 2)) / (math.pi * rho))
     p = np.nan_to_num(art["result"].contact_pressure)
     mid = (p > 0) & (np.abs(art["mesh"].points[:, 2]) <= 0.25 * g1.face_width)
     L += ["## 1. Three-tooth model at the pitch point (default accuracy)", "",

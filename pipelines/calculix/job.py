@@ -179,8 +179,7 @@ def write_job(mesh: HexMesh, model: FEModel, path: str | Path, penalty_scale: fl
     closing_rotation = dict(closing_rotation or {})
     out = [f"** {title}", "** written by gearfe (pipelines.calculix.job); units mm, N, MPa"]
     for b in model.bodies:
-        key = (b.material.E, b.material.nu)
-        mats.setdefault(key, f"STEEL{len(mats) + 1}" if len(mats) else "STEEL")
+        mats.setdefault(b.material, f"STEEL{len(mats) + 1}" if len(mats) else "STEEL")
         if b.loads:
             raise InputError(f"bodies[{b.name!r}].loads", b.loads, "no surface loads (not written for CalculiX)")
         for s in b.supports:
@@ -224,10 +223,10 @@ def write_job(mesh: HexMesh, model: FEModel, path: str | Path, penalty_scale: fl
         out.append(f"{r.rot_node}, " + ", ".join(_num(x) for x in mesh.reference_points[refs[r.ref_node - n - 1]].point))
     for r in rigid:
         out += [f"*NSET, NSET={r.rot_set}", f"{r.rot_node}"]
-    for (E, nu), mname in mats.items():
-        out += [f"*MATERIAL, NAME={mname}", "*ELASTIC", f"{_num(E)}, {_num(nu)}"]
+    for mat, mname in mats.items():
+        out += [f"*MATERIAL, NAME={mname}", "*ELASTIC", f"{_num(mat.E)}, {_num(mat.nu)}"]
     for b in model.bodies:
-        out.append(f"*SOLID SECTION, ELSET={names[b.name]}, MATERIAL={mats[(b.material.E, b.material.nu)]}")
+        out.append(f"*SOLID SECTION, ELSET={names[b.name]}, MATERIAL={mats[b.material]}")
     for r in rigid:
         out.append(f"*RIGID BODY, NSET={r.nset}, REF NODE={r.ref_node}, ROT NODE={r.rot_node}")
     if eqs:

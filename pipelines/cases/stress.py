@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 
+from fem.material import Material
 from tca.errors import InputError
 from tca.pair.te import POSITIONS
 from tca.planetary.train import ShaftErrors
@@ -63,8 +64,7 @@ def _read_fe(t: Table | None) -> FESettings:
     if t is None:
         return FESettings()
     f = FESettings(
-        E=_youngs(t),
-        nu=t.get("poisson_ratio", float, 0.29, lo=-1.0, hi=0.5, lo_open=True, hi_open=True),
+        material=Material(_youngs(t), t.get("poisson_ratio", float, 0.29, lo=-1.0, hi=0.5, lo_open=True, hi_open=True)),
         element=t.get("element", str, "C3D8I", choices=("C3D8I", "C3D8")),
         solver=t.get("solver", str, "auto", choices=("auto", "pardiso", "superlu")),
         penalty_factor=t.get("penalty_factor", float, 100.0, lo=0.0, lo_open=True, hi=1e6),

@@ -323,7 +323,7 @@ def fe_hertz(v: InterfaceView, result, force: float) -> HertzContact:
 
     mat = result.model.bodies[0].material
     width = min(v.slave.gear.face_width, v.master.gear.face_width)
-    return hertz_contact(v.interface.contact.curvature, max(force, 1e-9), mat.E, mat.nu, width)
+    return hertz_contact(v.interface.contact.curvature, max(force, 1e-9), mat, width)
 
 
 def colour_top(summary: dict, mesh, result, views) -> "object":

@@ -113,12 +113,13 @@ class FlankPoints:
         return sp.csr_matrix((self.weights.ravel(), (np.repeat(np.arange(p), 4), self.nodes.ravel())), shape=(p, m))
 
 
-def flattening(w: np.ndarray, b: np.ndarray, h: np.ndarray, E: float, nu: float, c: float) -> np.ndarray:
-    """Hertzian flattening [mm] of one body under a line load w [N/mm] of Hertz half-width b [mm], relative to
-    the point at distance h [mm] along the normal (module docstring):
+def flattening(w: np.ndarray, b: np.ndarray, h: np.ndarray, material: Material, c: float) -> np.ndarray:
+    """Hertzian flattening [mm] of one body of ``material`` under a line load w [N/mm] of Hertz half-width b [mm],
+    relative to the point at distance h [mm] along the normal (module docstring):
 
         delta = 2 w (1 - nu^2) / (pi E) * (ln(2 h / b) + c).
     """
+    E, nu = material.E, material.nu
     with np.errstate(divide="ignore", invalid="ignore"):
         d = 2.0 * w * (1.0 - nu**2) / (math.pi * E) * (np.log(2.0 * h / b) + c)
     return np.where(w > 0, np.maximum(d, 0.0), 0.0)

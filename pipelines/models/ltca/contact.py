@@ -56,6 +56,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
+from fem.material import Material
 from tca.contact.systems import PlacedFlank, area_margin, foot_points
 from tca.contact.ellipse import contact_ellipse
 from tca.errors import ConvergenceError, GeometryError
@@ -122,9 +123,9 @@ def _rotz(a: float) -> np.ndarray:
 
 
 def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: float, reach: float,
-                  E: float, nu: float) -> ContactLines:
+                  material: Material) -> ContactLines:
     """Slices of the pairs of teeth within ``reach`` [mm] at driver angle ``phi`` [rad] (module docstring);
-    E [MPa] and ν for the pressure law of the slices."""
+    the ``material`` (E [MPa], ν) for the pressure law of the slices."""
     fc1, fc2 = flanks
     val, ks = mte.branches(np.array([phi], float))
     val = val[0]
@@ -209,7 +210,7 @@ def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: fl
         teeth.append((int((-kk) % N1), int((-kk) % N2)))
         rows.append((idx, xi[ok], xs[ok], g[ok], arm[ok], np.full(ok.sum(), 1.0 / l2),
                      np.stack([loc1.depth[ok], loc2.depth[ok]], 1), loc1, loc2, ok,
-                     np.full(ok.sum(), hertz_kappa(l1, l2, E, nu)), seg[ok], edge[ok]))
+                     np.full(ok.sum(), hertz_kappa(l1, l2, material)), seg[ok], edge[ok]))
     if not rows or branches[0] != k:
         raise GeometryError(f"{pair.gear1.name}-{pair.gear2.name}", "contact line",
                             f"the loaded pair at phi = {math.degrees(phi):.6f} deg is not on the modelled flanks")
@@ -223,13 +224,13 @@ def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: fl
                         cat(10), cat(6), float(ds), W, arm0, tuple(dropped), cat(11), cat(12))
 
 
-def hertz_kappa(l1: float, l2: float, E: float, nu: float) -> float:
+def hertz_kappa(l1: float, l2: float, material: Material) -> float:
     """p0 / b [MPa/mm] of the Hertz ellipse of relative curvatures λ1 <= λ2 [1/mm] (independent of the load);
     E* λ2 / 2 for a line contact (λ1 <= 0)."""
-    line = E / (2.0 * (1.0 - nu**2)) * l2 / 2.0
+    line = material.E / (2.0 * (1.0 - material.nu**2)) * l2 / 2.0
     if not l1 > 0:
         return line
-    hz = hertz_contact((l1, l2), 1.0, E, nu, 1e12)
+    hz = hertz_contact((l1, l2), 1.0, material, 1e12)
     return line if hz.line else hz.p0 / hz.b
 
 
@@ -412,12 +413,12 @@ class LoadedContact:
     fixed_point: int
 
 
-def _local(F, lines: ContactLines, E: float, nu: float, c: float, w_guess: float) -> np.ndarray:
+def _local(F, lines: ContactLines, material: Material, c: float, w_guess: float) -> np.ndarray:
     """Local compliance δ_loc(w_s) / F_s [mm/N] at the current loads (w_guess where F_s = 0)."""
     w = np.where(F > 0, F / lines.length, w_guess)
-    Es = E / (2.0 * (1.0 - nu**2))
+    Es = material.E / (2.0 * (1.0 - material.nu**2))
     b = np.sqrt(4.0 * w * lines.radius / (math.pi * Es))
-    d = flattening(w, b, lines.depth[:, 0], E, nu, c) + flattening(w, b, lines.depth[:, 1], E, nu, c)
+    d = flattening(w, b, lines.depth[:, 0], material, c) + flattening(w, b, lines.depth[:, 1], material, c)
     return d / (w * lines.length)
 
 
@@ -454,7 +455,7 @@ def _active_set(M, g, a, T, A0, maxit=200):
     raise ConvergenceError("ltca active set", "active set still changing", float("nan"), maxit)
 
 
-def solve_contact(lines: ContactLines, torque: float, E: float, nu: float, c: float, tol: float = 1e-7,
+def solve_contact(lines: ContactLines, torque: float, material: Material, c: float, tol: float = 1e-7,
                   maxit: int = 30) -> LoadedContact:
     """Loads, elastic rotation, pressures and mesh stiffness at torque [N mm]; c the flattening constant (module docstring)."""
     a = lines.arm
@@ -464,7 +465,7 @@ def solve_contact(lines: ContactLines, torque: float, E: float, nu: float, c: fl
     A = lines.gap <= lines.gap.min() + 1e-12
     its = 0
     for fp in range(1, maxit + 1):
-        M = lines.W + np.diag(_local(F, lines, E, nu, c, w_guess))
+        M = lines.W + np.diag(_local(F, lines, material, c, w_guess))
         F_new, delta, it = _active_set(M, lines.gap, a, torque, A)
         its += it
         change = float(np.abs(F_new - F).max())

@@ -80,7 +80,7 @@ def build_model(case: StressCase, opts: LTCAOptions, say=None) -> LTCAModel:
             say(f"build: {g.name}: {fc.info['elements']} elements, {fc.info['dofs']} DOF, {fc.info['flank_nodes']} flank nodes "
                 f"condensed in {fc.info['total_s']:.1f} s")
         flanks.append(fc)
-    c_loc = strip_constant(case.fe.material) if opts.local == "strip" else weber_constant(case.fe.nu)
+    c_loc = strip_constant(case.fe.material) if opts.local == "strip" else weber_constant(case.fe.material.nu)
     if say is not None:
         say(f"build: Hertzian flattening constant c = {c_loc:+.4f} ({opts.local})")
     return LTCAModel(case, opts, r, mte, tuple(flanks), (hu, hz, ds), c_loc, time.perf_counter() - t0, t_tca)
@@ -115,19 +115,19 @@ def positions(model: LTCAModel) -> np.ndarray:
 def solve_positions(model: LTCAModel, phis, torques, bar=None) -> tuple[list, list, dict]:
     """Rows of results.csv and pressure.csv for every position and torque; timing record."""
     case, hu_hz_ds = model.case, model.sizes
-    E, nu = case.fe.E, case.fe.nu
+    material = case.fe.material
     rows, prows = [], []
     t_lines = t_solve = 0.0
     n = len(phis)
     for ip, phi in enumerate(phis):
         t0 = time.perf_counter()
-        L = contact_lines(case.pair, model.mte, float(phi), model.flanks, hu_hz_ds[2], model.opts.reach, E, nu)
+        L = contact_lines(case.pair, model.mte, float(phi), model.flanks, hu_hz_ds[2], model.opts.reach, material)
         t1 = time.perf_counter()
         t_lines += t1 - t0
         names = [_pair_name(model, t) for t in L.teeth]
         for T in torques:
             t2 = time.perf_counter()
-            s = solve_contact(L, T, E, nu, model.local)
+            s = solve_contact(L, T, material, model.local)
             t_solve += time.perf_counter() - t2
             tot = float(s.F.sum())
             row = {"phi1_deg": math.degrees(phi), "torque_nm": T * 1e-3, "active_branch": L.k,

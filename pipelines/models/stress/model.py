@@ -48,7 +48,7 @@ import os
 import dataclasses
 from dataclasses import dataclass
 
-from fem import Body, ContactOptions, ContactPair, FEModel, Fixed, Material, Rigid, SolverOptions, solve
+from fem import STEEL, Body, ContactOptions, ContactPair, FEModel, Fixed, Material, Rigid, SolverOptions, solve
 from fem.result import FEResult
 from mesher import MeshOptions, join_parts, mesh_gear, merge_meshes
 from fem.mesh.hexmesh import HexMesh
@@ -67,8 +67,7 @@ ELEMENTS = {"C3D8I": "hex8i", "C3D8": "hex8"}
 class FESettings:
     """Material, element, solver and contact settings of a stress case."""
 
-    E: float = 2.068e5  # [MPa] (Numerical Example 1.3)
-    nu: float = 0.29
+    material: Material = STEEL  # E = 2.068e5 MPa, nu = 0.29 (Numerical Example 1.3)
     element: str = "C3D8I"
     solver: str = "auto"
     penalty_factor: float = 100.0
@@ -80,7 +79,6 @@ class FESettings:
     points: str = "gauss"  # contact constraints: 'gauss' (per Gauss point) or 'nodes' (averaged per slave node)
 
     def __post_init__(self):
-        Material(self.E, self.nu)  # validates
         if self.element not in ELEMENTS:
             raise InputError("fe.element", self.element, "one of " + ", ".join(repr(e) for e in ELEMENTS))
         SolverOptions(solver=self.solver)
@@ -88,10 +86,6 @@ class FESettings:
         if not (0 < self.search_gap <= self.max_search_gap <= 5.0):
             raise InputError("fe.search_gap_mm", self.search_gap, f"in (0, max_search_gap_mm = {self.max_search_gap:g}] mm, "
                              "max_search_gap_mm <= 5")
-
-    @property
-    def material(self) -> Material:
-        return Material(self.E, self.nu)
 
     def contact_options(self) -> ContactOptions:
         return ContactOptions(penalty_factor=self.penalty_factor, max_penetration=self.max_penetration,

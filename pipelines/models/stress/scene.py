@@ -178,7 +178,7 @@ class Placing:
 
 def _interface(at: Placing, pair: GearPair, c: MeshContact, torque: float, rules: SizeRules, mat: Material) -> Interface:
     """Driver and driven parts of one mesh at its contact, with Hertz-based sizes (placed by mesher.placement)."""
-    hz = hertz_contact(c.curvature, _load(pair, c, torque), mat.E, mat.nu, contact_length(pair))
+    hz = hertz_contact(c.curvature, _load(pair, c, torque), mat, contact_length(pair))
     g1, g2 = pair.gear1, pair.gear2
     m1, m2 = pair.mounts()
     s1 = contact_sizes(rules, g1, hz, c.angle, c.kind)

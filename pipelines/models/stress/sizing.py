@@ -8,6 +8,7 @@ from dataclasses import dataclass
 from scipy.optimize import brentq
 from scipy.special import ellipe, ellipk
 
+from fem.material import Material
 from tca.errors import GeometryError, InputError
 from tca.geometry.gear import Gear
 from tca.pair.analysis import ContactKind
@@ -49,15 +50,15 @@ def _ratio(e: float) -> float:
 _E_MAX = 1 - 1e-12  # largest eccentricity solved for; B/A beyond _ratio(_E_MAX) (~1e11) is a line contact
 
 
-def hertz_contact(lam: tuple, load: float, E: float, nu: float, length: float) -> HertzContact:
-    """Hertz contact of two bodies of one material (module docstring of :mod:`pipelines.models.stress.scene`).
+def hertz_contact(lam: tuple, load: float, material: Material, length: float) -> HertzContact:
+    """Hertz contact of two bodies of one ``material`` (module docstring of :mod:`pipelines.models.stress.scene`).
 
     lam: eigenvalues (λ1, λ2) of the relative curvature [1/mm]; load [N]; ``length`` [mm]: the
     length of the contact line inside both flanks (the face width over cos β_b for a helical pair);
     an ellipse longer than it is a line contact, b = sqrt(4 w R / (π E*)) = sqrt(8 w R / (π E')),
     w = load / length, R = 1 / λ2, E* = E / (2 (1 - ν²)) = E' / 2, p0 = 2 w / (π b).
     """
-    Es = E / (2.0 * (1.0 - nu**2))
+    Es = material.E / (2.0 * (1.0 - material.nu**2))
     l1, l2 = sorted(float(x) for x in lam)
     if not (l2 > 0 and load > 0 and length > 0):
         raise GeometryError("contact", "not convex", f"relative curvatures {l1:.3g}, {l2:.3g} 1/mm and load {load:.3g} N: "

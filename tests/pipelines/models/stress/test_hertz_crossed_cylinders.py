@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
+from fem.material import Material
 from pipelines.models.stress.sizing import hertz_contact
 from tca.contact.ellipse import contact_ellipse
 from tca.geometry.surfaces import SurfacePoints
@@ -56,7 +57,7 @@ def test_crossed_cylinders_against_hertz(R1, R2, theta_deg):
     diff = (float(ang) - psi + math.pi / 2) % math.pi - math.pi / 2
     assert abs(diff) < 1e-10
     # semi-axes and p0 against Hertz's potential integrals
-    h = hertz_contact(tuple(lam), P, E, NU, length=100.0)
+    h = hertz_contact(tuple(lam), P, Material(E, NU), length=100.0)
     a, b = h.a, h.b
     assert not h.line and a > b
     Es = E / (2 * (1 - NU**2))
