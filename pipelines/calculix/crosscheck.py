@@ -1,7 +1,7 @@
 """gearfe against CalculiX on the same job: the quantities compared and how each is computed (issue 13).
 
 Both solvers' results go through one function, :func:`quantities`, from nodal arrays on the
-mesh nodes (CalculiX node i+1 = mesh node i, :mod:`pipelines.calculix.job`):
+mesh nodes (:class:`NodalResults`; CalculiX node i+1 = mesh node i, :mod:`pipelines.calculix.job`):
 
 * contact force [N]: magnitude of the resultant of the fixed body's support reactions (the fixed
   body carries only contact loads, so this is the resultant of the contact forces; on an involute
@@ -40,10 +40,10 @@ from fem.constraints import set_nodes
 from mesher.export import abaqus_name
 from tca.errors import GearfeError, InputError
 
-from pipelines.calculix.job import CcxJob, run_ccx, write_job
+from pipelines.calculix.job import CcxJob, CcxOptions, run_ccx, write_job
 from pipelines.calculix.frd import read_dat_contact, read_frd
 
-__all__ = ["Quantities", "quantities", "von_mises", "principal", "write_reference", "write_inp_job", "crosscheck",
+__all__ = ["Quantities", "NodalResults", "quantities", "von_mises", "principal", "write_reference", "write_inp_job", "crosscheck",
            "TARGETS", "table"]
 
 # acceptance targets of issue 13 (relative, except the load shares: absolute)
@@ -81,12 +81,24 @@ def principal(S: np.ndarray) -> np.ndarray:
     return np.linalg.eigvalsh(T)[:, ::-1]
 
 
-def quantities(ref: dict, U, S, RF, pressure, solver: str, wall_s: float, peak_mb: float, pair_force=None) -> Quantities:
-    """The compared numbers from nodal arrays on the mesh nodes (see module docstring).
+@dataclass(frozen=True, eq=False)
+class NodalResults:
+    """One solver's results on the mesh nodes: displacements U (n, 3) [mm], stresses S (n, 6) xx yy zz xy yz zx
+    [MPa], reaction forces RF (n, 3) [N] and contact pressure (n,) [MPa]."""
 
-    ``ref``: :func:`write_reference`'s arrays. ``pair_force`` (name -> N) overrides the
-    pressure-times-area pair forces (gearfe's exact lambda sums).
+    U: np.ndarray
+    S: np.ndarray
+    RF: np.ndarray
+    pressure: np.ndarray
+
+
+def quantities(ref: dict, res: NodalResults, solver: str, wall_s: float, peak_mb: float, pair_force=None) -> Quantities:
+    """The compared numbers of one solver's nodal results (see module docstring).
+
+    ``ref``: :func:`write_reference`'s arrays; ``wall_s`` [s] and ``peak_mb`` [MB] the solver's cost.
+    ``pair_force`` (name -> N) overrides the pressure-times-area pair forces (gearfe's exact lambda sums).
     """
+    U, S, RF, pressure = res.U, res.S, res.RF, res.pressure
     pts = ref["points"]
     fixed = ref["fixed_nodes"]
     R = RF[fixed].sum(0)
@@ -127,8 +139,8 @@ def write_reference(out: Path, scene, mesh, result, solve_s: float) -> Quantitie
     for c in model.contacts:
         ref[f"pair/{c.name}"] = mesh.face_nodes(c.slave)
     np.savez_compressed(out / "crosscheck_ref.npz", **ref)
-    q = quantities(ref, result.displacement, result.stress, result.reaction, result.contact_pressure, "gearfe", solve_s,
-                   resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0,
+    q = quantities(ref, NodalResults(result.displacement, result.stress, result.reaction, result.contact_pressure),
+                   "gearfe", solve_s, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0,
                    pair_force={p.name: p.force for p in result.pairs})
     (out / "crosscheck_gearfe.json").write_text(json.dumps(asdict(q), indent=2) + "\n")
     return q
@@ -139,8 +151,9 @@ def write_inp_job(out: Path, scene, mesh, result, solve_s: float, formulation: s
     and the reference files of :func:`crosscheck`."""
     rot = {b: float(np.asarray(r)[...] @ np.asarray(mesh.reference_points[b].axis, float))
            for b, (_, r) in result.rigid_motion.items() if b in mesh.reference_points}
-    job = write_job(mesh, result.model, out / "job.inp", penalty_scale=result.info.penalty_scale, closing_rotation=rot,
-                    formulation=formulation, title=f"gearfe stress scene: {scene.model} model")
+    job = write_job(mesh, result.model, out / "job.inp", CcxOptions(formulation=formulation),
+                    penalty_scale=result.info.penalty_scale, closing_rotation=rot,
+                    title=f"gearfe stress scene: {scene.model} model")
     write_reference(out, scene, mesh, result, solve_s)
     return job
 
@@ -178,8 +191,9 @@ def crosscheck(folder: Path, timeout: float = 3600.0) -> tuple[Quantities, Quant
     for name, slave, master in zip(ref["pair_names"], ref["pair_slave"], ref["pair_master"]):
         # a pair without any contact element in the last iteration is not printed: no force
         pair_force[name] = max(0.0, cf[(slave, master)]["normal_force"]) if (slave, master) in cf else 0.0
-    cq = quantities(ref, blocks["DISP"].field(n), blocks["STRESS"].field(n), blocks["FORC"].field(n),
-                    blocks["CONTACT"].field(n)[:, 3], "calculix", run.wall_s, run.peak_mb, pair_force=pair_force)
+    res = NodalResults(blocks["DISP"].field(n), blocks["STRESS"].field(n), blocks["FORC"].field(n),
+                       blocks["CONTACT"].field(n)[:, 3])
+    cq = quantities(ref, res, "calculix", run.wall_s, run.peak_mb, pair_force=pair_force)
     return gq, cq
 
 

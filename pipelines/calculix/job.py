@@ -1,7 +1,7 @@
 """CalculiX/ABAQUS job of a stress scene: the same mesh, supports, load and penalty contact (issue 13).
 
 :func:`write_job` writes one self-contained input deck (``job.inp``) that ``ccx job`` runs
-unchanged; :func:`run_ccx` runs it. Conventions (see also ``docs/calculix.md``):
+unchanged (how CalculiX solves it: :class:`CcxOptions`); :func:`run_ccx` runs it. Conventions (see also ``docs/calculix.md``):
 
 * Units mm, N, MPa (as gearfe): E [MPa], torque [N mm], penalty slope K [MPa/mm].
 * Node ids 1..n are the mesh nodes in gearfe's order (node i+1 = mesh node i), then one
@@ -58,7 +58,7 @@ from mesher.export import abaqus_name, write_inp
 from fem.mesh.hexmesh import HEX_FACES, HexMesh
 from tca.errors import GearfeError, InputError
 
-__all__ = ["CCX_INSTALL", "FORMULATIONS", "CcxRigid", "CcxPair", "CcxJob", "pair_penalty", "write_job", "ccx_path",
+__all__ = ["CCX_INSTALL", "FORMULATIONS", "CcxOptions", "CcxRigid", "CcxPair", "CcxJob", "pair_penalty", "write_job", "ccx_path",
            "CcxRun", "run_ccx"]
 
 CCX_INSTALL = "apt-get install calculix-ccx"
@@ -66,6 +66,24 @@ FORMULATIONS = {"node": "NODE TO SURFACE", "surface": "SURFACE TO SURFACE"}
 SOLVERS = ("SPOOLES", "ITERATIVE CHOLESKY", "ITERATIVE SCALING", "PARDISO", "PASTIX")
 ELEMENT_TYPES = {"hex8i": "C3D8I", "hex8": "C3D8"}
 _OPPOSITE = np.array([1, 0, 4, 5, 2, 3])
+
+
+@dataclass(frozen=True)
+class CcxOptions:
+    """How CalculiX solves a job: contact ``formulation`` (a key of FORMULATIONS), linear ``solver`` (one of
+    SOLVERS), the clearance ``c0`` [mm] of the node-to-surface pressure-overclosure law, and the
+    ``increment`` of the static steps."""
+
+    formulation: str = "node"
+    solver: str = "SPOOLES"
+    c0: float = 1e-3
+    increment: float = 1.0
+
+    def __post_init__(self):
+        if self.formulation not in FORMULATIONS:
+            raise InputError("formulation", self.formulation, "one of " + ", ".join(repr(f) for f in FORMULATIONS))
+        if self.solver not in SOLVERS:
+            raise InputError("solver", self.solver, "one of " + ", ".join(repr(f) for f in SOLVERS))
 
 
 @dataclass(frozen=True)
@@ -156,18 +174,16 @@ def _node_dofs(node: int, R: np.ndarray, held: list[int], values: np.ndarray, lo
     return bnd, eqs, cl
 
 
-def write_job(mesh: HexMesh, model: FEModel, path: str | Path, penalty_scale: float = 1.0,
-              closing_rotation: dict | None = None, formulation: str = "node", solver: str = "SPOOLES",
-              c0: float = 1e-3, increment: float = 1.0, title: str = "gearfe stress scene") -> CcxJob:
+def write_job(mesh: HexMesh, model: FEModel, path: str | Path, options: CcxOptions = CcxOptions(), *,
+              penalty_scale: float = 1.0, closing_rotation: dict | None = None,
+              title: str = "gearfe stress scene") -> CcxJob:
     """Write the complete CalculiX job of a contact model on a mesh (see module docstring).
 
-    ``closing_rotation`` (body -> rotation [rad] about its axis, e.g. gearfe's solution): a first
-    step prescribes it to close the contacts, the second releases it and applies the torque.
+    ``penalty_scale``: the scale of gearfe's penalty the solve reached. ``closing_rotation`` (body ->
+    rotation [rad] about its axis, e.g. gearfe's solution): a first step prescribes it to close the
+    contacts, the second releases it and applies the torque.
     """
-    if formulation not in FORMULATIONS:
-        raise InputError("formulation", formulation, "one of " + ", ".join(repr(f) for f in FORMULATIONS))
-    if solver not in SOLVERS:
-        raise InputError("solver", solver, "one of " + ", ".join(repr(f) for f in SOLVERS))
+    formulation, solver, c0, increment = options.formulation, options.solver, options.c0, options.increment
     if not (penalty_scale > 0 and np.isfinite(penalty_scale)):
         raise InputError("penalty_scale", penalty_scale, "a finite scale > 0")
     path = Path(path)
