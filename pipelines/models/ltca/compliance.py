@@ -55,9 +55,22 @@ from fem.mesh.hexmesh import HEX_FACES
 from tca.errors import GeometryError
 from tca.geometry.gear import Gear
 
-__all__ = ["FlankCompliance", "flank_compliance", "flattening", "weber_constant", "strip_constant", "FlankPoints"]
+__all__ = ["FlankGrid", "FlankCompliance", "flank_compliance", "flattening", "weber_constant", "strip_constant", "FlankPoints"]
 
 SIDE = {1: "pos", -1: "neg"}
+
+
+@dataclass(frozen=True)
+class FlankGrid:
+    """The model of one gear whose flanks are condensed: ``teeth`` modelled teeth, a uniform grid on the
+    loaded flanks of profile size ``h_u`` and axial size ``h_z`` centred at the profile parameter ``u_mid``
+    of the contact, and the body's element size ``coarse`` [mm]."""
+
+    teeth: int
+    h_u: float
+    h_z: float
+    coarse: float
+    u_mid: float
 
 
 @dataclass(frozen=True, eq=False)
@@ -171,9 +184,10 @@ def strip_constant(material: Material, ratio: float = 10.0, per_b: int = 12, gro
     return float(C[0, 0] * math.pi * material.E / (2.0 * w * (1.0 - material.nu**2)) - math.log(2.0 * h / b))
 
 
-def _mesh(gear: Gear, side: int, teeth: int, h_u: float, h_z: float, coarse: float, u_mid: float):
+def _mesh(gear: Gear, side: int, grid: FlankGrid):
     """The gear's model with a uniform grid on the loaded flanks (the focus zone covers the whole flank);
     the fillets at the profile size (a fillet as coarse as the body makes the tooth too stiff in bending)."""
+    teeth, h_u, h_z, coarse, u_mid = grid.teeth, grid.h_u, grid.h_z, grid.coarse, grid.u_mid
     B = gear.face_width
     top = max(coarse, h_u, h_z)
     opts = MeshOptions(teeth=teeth, coarse_size=top, contact_size=h_u, axial_contact_size=h_z, fillet_size=min(top, h_u),
@@ -192,14 +206,14 @@ def _normals(points, cells, faces_cf):
     return quads, nf
 
 
-def flank_compliance(gear: Gear, side: int, teeth: int, h_u: float, h_z: float, coarse: float, u_mid: float,
-                     material: Material, element: str = "hex8i", solver: str = "auto") -> FlankCompliance:
-    """Build the condensed flank compliance of ``gear`` (module docstring); sizes [mm]."""
+def flank_compliance(gear: Gear, side: int, grid: FlankGrid, material: Material, element: str = "hex8i",
+                     solver: str = "auto") -> FlankCompliance:
+    """Build the condensed flank compliance of ``gear``'s flanks on ``side`` (module docstring)."""
     t0 = time.perf_counter()
-    mesh = _mesh(gear, side, teeth, h_u, h_z, coarse, u_mid)
+    mesh = _mesh(gear, side, grid)
     t_mesh = time.perf_counter() - t0
     name = mesh.bodies[0]
-    tlist = model_teeth(gear, teeth, 0)
+    tlist = model_teeth(gear, grid.teeth, 0)
     quads, nfs, tooth_of_face = [], [], []
     centre_angle = {}
     for j in tlist:

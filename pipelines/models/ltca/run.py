@@ -32,7 +32,7 @@ from tca.pair.analysis import ARCSEC, run_pair_tca
 from tca.planetary.subgear import MeshTE
 
 from pipelines.models.ltca.options import LTCAOptions
-from pipelines.models.ltca.compliance import flank_compliance, strip_constant, weber_constant
+from pipelines.models.ltca.compliance import FlankGrid, flank_compliance, strip_constant, weber_constant
 from pipelines.models.ltca.contact import contact_lines, solve_contact
 from pipelines.models.stress.case import StressCase
 from pipelines.models.stress.model import ELEMENTS
@@ -74,8 +74,8 @@ def build_model(case: StressCase, opts: LTCAOptions, say=None) -> LTCAModel:
     coarse = hz  # the body's elements as fine as the axial grid (a coarser body is too stiff in bending, docs/ltca.md)
     flanks = []
     for g, side, u in ((pair.gear1, pair.side1, c.params[0]), (pair.gear2, pair.side2, c.params[2])):
-        fc = flank_compliance(g, side, case.mesh.teeth, hu, hz, coarse, u, case.fe.material, ELEMENTS[case.fe.element],
-                              case.fe.solver)
+        fc = flank_compliance(g, side, FlankGrid(case.mesh.teeth, hu, hz, coarse, u), case.fe.material,
+                              ELEMENTS[case.fe.element], case.fe.solver)
         if say is not None:
             say(f"build: {g.name}: {fc.info['elements']} elements, {fc.info['dofs']} DOF, {fc.info['flank_nodes']} flank nodes "
                 f"condensed in {fc.info['total_s']:.1f} s")
