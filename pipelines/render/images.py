@@ -9,6 +9,7 @@ many images.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -19,7 +20,7 @@ from tca.errors import InputError
 
 from pipelines.render import offscreen
 
-__all__ = ["offscreen", "to_pyvista", "render_contact_zone", "render_overview", "image_is_blank"]
+__all__ = ["offscreen", "to_pyvista", "Zone", "Scalars", "render_contact_zone", "render_overview", "image_is_blank"]
 
 SCALAR_BAR = dict(title_font_size=18, label_font_size=14, n_labels=6, fmt="%.0f", vertical=True,
                   position_x=0.86, position_y=0.12, height=0.76, width=0.06)
@@ -39,26 +40,45 @@ def to_pyvista(mesh: HexMesh, point_data: dict | None = None, cell_data: dict | 
     return grid
 
 
+@dataclass(frozen=True)
+class Zone:
+    """A contact zone seen by the camera: on ``focus`` [mm], looking along -``normal``; the cells within
+    about 3 ``radius`` [mm] of the focus are drawn."""
+
+    focus: tuple
+    normal: tuple
+    radius: float
+
+
+@dataclass(frozen=True)
+class Scalars:
+    """The point field drawn, its scalar-bar title and colour range ``clim`` (None: the field's range)."""
+
+    field: str
+    title: str = "von Mises stress [MPa]"
+    clim: tuple | None = None
+
+
 def _plotter(size):
     p = pv.Plotter(off_screen=True, window_size=list(size))
     p.set_background("white")
     return p
 
 
-def render_contact_zone(grid: pv.UnstructuredGrid, field: str, focus, normal, path: Path, *, radius: float,
-                        title: str = "von Mises stress [MPa]", clim=None, size=(1600, 1100),
+def render_contact_zone(grid: pv.UnstructuredGrid, path: Path, zone: Zone, scalars: Scalars, *, size=(1600, 1100),
                         caption: str = "", show_edges: bool = True) -> Path:
-    """Stress on the teeth around a contact point: camera on `focus` [mm], looking along -`normal`.
+    """Stress on the teeth around a contact point: camera on the zone's focus [mm], looking along -normal.
 
     Only cells within ~3 radius of the focus are drawn (the contacting teeth), coloured by the
-    point field `field`, with a labelled scalar bar; `clim` fixes the colour range (to compare
+    point field of ``scalars``, with a labelled scalar bar; its ``clim`` fixes the colour range (to compare
     images); ``show_edges`` draws the element edges (off for fine meshes, where they hide the colours).
     Returns the PNG path.
     """
+    field, title, clim, radius = scalars.field, scalars.title, scalars.clim, zone.radius
     if field not in grid.point_data:
         raise InputError("field", field, "a point field of the result: " + ", ".join(grid.point_data))
-    focus = np.asarray(focus, float)
-    normal = np.asarray(normal, float)
+    focus = np.asarray(zone.focus, float)
+    normal = np.asarray(zone.normal, float)
     normal = normal / np.linalg.norm(normal)
     centers = grid.cell_centers().points
     near = np.flatnonzero(np.linalg.norm(centers - focus, axis=1) < 3 * radius)

@@ -1,7 +1,8 @@
 r"""Engineering plots of FE fields (matplotlib, Agg): flank pressure maps, sections and root stress.
 
-All functions take plain arrays (coordinates in mm, stresses in MPa) and write one PNG; what the
-arrays mean is decided by the caller (:mod:`pipelines.report.figures`).
+All functions take plain arrays (coordinates in mm, stresses in MPa; a nodal field on a planar
+triangulation as a :class:`TriField`) and write one PNG; what the arrays mean is decided by the
+caller (:mod:`pipelines.report.figures`).
 
 * :func:`plot_flank_pressure` — nodal contact pressure on a flank in its own coordinates (axial
   position z, radius ρ), Gouraud-shaded over the flank's quadrilaterals split into triangles, the
@@ -21,7 +22,8 @@ import numpy as np
 
 from pipelines.render.plots import plt, savefig
 
-__all__ = ["PATCH_FRACTION", "Curve", "plot_flank_pressure", "plot_section", "plot_root_stress", "quads_to_triangles"]
+__all__ = ["PATCH_FRACTION", "Curve", "TriField", "DepthMark", "plot_flank_pressure", "plot_section", "plot_root_stress",
+           "quads_to_triangles"]
 
 PATCH_FRACTION = 0.01  # the FE contact patch: nodal pressure above this fraction of the flank's peak
 DPI = 100  # the maps are large figures: 100 dpi keeps them sharp at a third fewer pixels than the plots
@@ -38,14 +40,33 @@ class Curve:
     color: str = "k"
 
 
+@dataclass(frozen=True, eq=False)
+class TriField:
+    """A nodal field on a planar triangulation: coordinates ``xy`` (n, 2) [mm], ``triangles`` (m, 3) node
+    indices, ``values`` (n,)."""
+
+    xy: np.ndarray
+    triangles: np.ndarray
+    values: np.ndarray
+
+
+@dataclass(frozen=True)
+class DepthMark:
+    """A point marked ``depth`` [mm] below a section's contact point along the unit 2D vector ``down`` (into
+    the surface)."""
+
+    depth: float
+    down: tuple
+
+
 def quads_to_triangles(quads: np.ndarray) -> np.ndarray:
     """(n, 4) quadrilaterals -> (2n, 3) triangles (diagonal 0-2)."""
     q = np.asarray(quads)
     return np.concatenate([q[:, [0, 1, 2]], q[:, [0, 2, 3]]])
 
 
-def plot_flank_pressure(zr: np.ndarray, triangles: np.ndarray, pressure: np.ndarray, path: Path, *, curves=(),
-                        point=None, area=None, title: str = "", zoom: float | None = None) -> Path:
+def plot_flank_pressure(flank: TriField, path: Path, *, curves=(), point=None, area=None, title: str = "",
+                        zoom: float | None = None) -> Path:
     """Contact pressure [MPa] on a flank over (z, radius) [mm] with TCA curves (module docstring).
 
     `area`: (z_min, z_max, r_lo, r_hi) working area drawn as a rectangle; `point`: (z, r) of the TCA
@@ -53,9 +74,9 @@ def plot_flank_pressure(zr: np.ndarray, triangles: np.ndarray, pressure: np.ndar
     """
     import matplotlib.tri as mtri
 
-    zr = np.asarray(zr, float)
-    p = np.nan_to_num(np.asarray(pressure, float))
-    tri = mtri.Triangulation(zr[:, 0], zr[:, 1], np.asarray(triangles))
+    zr = np.asarray(flank.xy, float)
+    p = np.nan_to_num(np.asarray(flank.values, float))
+    tri = mtri.Triangulation(zr[:, 0], zr[:, 1], np.asarray(flank.triangles))
     peak = float(p.max(initial=0.0))
     panels = 2 if zoom and point is not None else 1
     fig, axs = plt.subplots(1, panels, figsize=(6.2 * panels, 5.6), squeeze=False)
@@ -90,21 +111,20 @@ def plot_flank_pressure(zr: np.ndarray, triangles: np.ndarray, pressure: np.ndar
     return savefig(fig, path, dpi=DPI, tight=False)
 
 
-def plot_section(xy: np.ndarray, triangles: np.ndarray, values: np.ndarray, path: Path, *, vmax: float,
-                 point=None, depth=None, down=None, zoom: float | None = None, title: str = "",
-                 label: str = "von Mises [MPa]") -> Path:
-    """A field on a planar section over in-plane coordinates `xy` [mm] (module docstring).
+def plot_section(section: TriField, path: Path, *, vmax: float, point=None, depth: DepthMark | None = None,
+                 zoom: float | None = None, title: str = "", label: str = "von Mises [MPa]") -> Path:
+    """A field on a planar section over its in-plane coordinates [mm] (module docstring).
 
     Left: the whole section on 0…`vmax` (values above in magenta, the colour bar says so); right
     (when `zoom` [mm] and `point` are given): a square of half-width `zoom` around `point` on the
-    full range of the values shown there. `depth` [mm] along the unit 2D vector `down` (into the
-    surface) marks a point below `point` (the depth of the Hertz maximum shear stress).
+    full range of the values shown there. `depth` marks a point below `point` (the depth of the
+    Hertz maximum shear stress).
     """
     import matplotlib.tri as mtri
 
-    xy = np.asarray(xy, float)
-    v = np.nan_to_num(np.asarray(values, float))
-    tri = mtri.Triangulation(xy[:, 0], xy[:, 1], np.asarray(triangles))
+    xy = np.asarray(section.xy, float)
+    v = np.nan_to_num(np.asarray(section.values, float))
+    tri = mtri.Triangulation(xy[:, 0], xy[:, 1], np.asarray(section.triangles))
     panels = 2 if zoom and point is not None else 1
     fig, axs = plt.subplots(1, panels, figsize=(6.6 * panels, 5.8), squeeze=False)
     fig.subplots_adjust(left=0.07 * 2 / panels, right=0.97, bottom=0.17, top=0.9, wspace=0.3)
@@ -125,10 +145,10 @@ def plot_section(xy: np.ndarray, triangles: np.ndarray, values: np.ndarray, path
         ax.set_ylabel("y [mm] (radial, slave gear)")
         if point is not None:
             ax.plot([point[0]], [point[1]], "+", color="k", ms=12, mew=2, label="TCA contact point" if k == 0 else None)
-            if depth is not None and down is not None:
-                q = np.asarray(point) + depth * np.asarray(down)
+            if depth is not None:
+                q = np.asarray(point) + depth.depth * np.asarray(depth.down)
                 ax.plot([q[0]], [q[1]], "x", color="w", ms=8, mew=2,
-                        label=f"Hertz max. shear depth 0.78 b = {depth * 1e3:.0f} µm" if k == 0 else None)
+                        label=f"Hertz max. shear depth 0.78 b = {depth.depth * 1e3:.0f} µm" if k == 0 else None)
         if k == 1:
             ax.set_xlim(point[0] - zoom, point[0] + zoom)
             ax.set_ylim(point[1] - zoom, point[1] + zoom)

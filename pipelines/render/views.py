@@ -9,7 +9,8 @@ largest fillet stress × 1.1, so fillets never saturate): values above it are dr
 :data:`ABOVE_COLOR` and the scalar bar is labelled ``clipped at ... (max ... MPa)``, so the contact
 zones and the fillets are both readable and nothing is hidden.
 
-Views (:func:`render_teeth`): left, the meshing parts seen along the gear axis (parallel
+Views (:func:`render_teeth`; directions in a :class:`Frame`, the field and its range in a
+:class:`Colouring`): left, the meshing parts seen along the gear axis (parallel
 projection, the loaded tooth upright); right, the loaded flank's part seen along the contact
 normal from the side of the other body (cells in front of the tangent plane left out, they would
 hide the flank). Smooth shading with VTK's light kit; sharp edges stay sharp
@@ -30,8 +31,8 @@ import pyvista as pv
 
 from tca.errors import InputError
 
-__all__ = ["CLIP_PERCENTILE", "ABOVE_COLOR", "ColourRange", "clip_range", "Mark", "render_teeth", "render_deformed",
-           "deformation_scale"]
+__all__ = ["CLIP_PERCENTILE", "ABOVE_COLOR", "ColourRange", "clip_range", "Mark", "Frame", "Colouring", "render_teeth",
+           "render_deformed", "deformation_scale"]
 
 CLIP_PERCENTILE = 99.5  # [%] of the shown nodal values: the top of the colour range
 ABOVE_COLOR = "magenta"  # values above the clipped range
@@ -89,6 +90,28 @@ class Mark:
     label: str
 
 
+@dataclass(frozen=True)
+class Frame:
+    """Directions of the views of meshing parts: the gear ``axis``, ``up`` (radial at the contact), the contact
+    ``normal`` toward the camera of the flank view, and ``cut`` [mm], the point whose transverse plane cuts
+    the axial view (None: not cut)."""
+
+    axis: tuple
+    up: tuple
+    normal: tuple | None = None
+    cut: tuple | None = None
+
+
+@dataclass(frozen=True)
+class Colouring:
+    """The point field drawn, its colour range, the scalar-bar title, and whether element edges are drawn."""
+
+    cr: ColourRange
+    field: str = "von_mises"
+    title: str = "von Mises [MPa]"
+    show_edges: bool = False
+
+
 def _unit(v) -> np.ndarray:
     v = np.asarray(v, float)
     return v / np.linalg.norm(v)
@@ -98,7 +121,8 @@ def _surface(grid: pv.UnstructuredGrid) -> pv.PolyData:
     return grid.extract_surface(algorithm="dataset_surface") if grid.n_cells else pv.PolyData()
 
 
-def _add_field(p: pv.Plotter, grid, field: str, cr: ColourRange, title: str, show_edges: bool, bar: bool):
+def _add_field(p: pv.Plotter, grid, colouring: Colouring, bar: bool):
+    field, cr, title, show_edges = colouring.field, colouring.cr, colouring.title, colouring.show_edges
     surf = _surface(grid)
     p.add_mesh(surf, scalars=field, cmap="jet", clim=(cr.lo, cr.hi), above_color=ABOVE_COLOR if cr.clipped else None,
                smooth_shading=True, split_sharp_edges=True, specular=0.25, specular_power=20, show_edges=show_edges,
@@ -142,18 +166,20 @@ def _half_height(grid, direction, up, aspect: float) -> float:
     return 0.54 * max(ext[0], ext[1] / aspect)
 
 
-def render_teeth(parts: pv.UnstructuredGrid, flank: pv.UnstructuredGrid, path: Path, *, axis, up, normal, cr: ColourRange,
-                 marks=(), field: str = "von_mises", title: str = "von Mises [MPa]", caption: str = "",
-                 show_edges: bool = False, cut=None, size=(1300, 600)) -> Path:
-    """Two lit views (module docstring): `parts` along `axis`, `flank` along -`normal` (camera on +normal).
+def render_teeth(parts: pv.UnstructuredGrid, flank: pv.UnstructuredGrid, path: Path, frame: Frame, colouring: Colouring, *,
+                 marks=(), caption: str = "", size=(1300, 600)) -> Path:
+    """Two lit views (module docstring): `parts` along the frame's axis, `flank` along -normal (camera on +normal).
 
-    `cut` [mm]: a point (the contact point) whose transverse plane cuts the axial view: the half
-    toward the camera is left out, so the contact zone under the surface and the fillets show.
+    The frame's ``cut`` [mm]: a point (the contact point) whose transverse plane cuts the axial view:
+    the half toward the camera is left out, so the contact zone under the surface and the fillets show.
     """
+    field = colouring.field
     for g in (parts, flank):
         if g.n_cells and field not in g.point_data:
             raise InputError("field", field, "a point field of the result: " + ", ".join(g.point_data))
-    axis, up, normal = _unit(axis), np.asarray(up, float), _unit(normal)
+    if frame.normal is None:
+        raise InputError("frame.normal", None, "the contact normal (the flank view looks along it)")
+    axis, up, normal, cut = _unit(frame.axis), np.asarray(frame.up, float), _unit(frame.normal), frame.cut
     aspect = 0.5 * size[0] / size[1]
     p = pv.Plotter(off_screen=True, window_size=list(size), shape=(1, 2), border=False)
     try:
@@ -162,7 +188,7 @@ def render_teeth(parts: pv.UnstructuredGrid, flank: pv.UnstructuredGrid, path: P
         shown = parts
         if cut is not None and parts.n_cells:  # the half behind the transverse plane through the contact
             shown = parts.clip(normal=axis, origin=np.asarray(cut, float), invert=True)
-        _add_field(p, shown, field, cr, title, show_edges, bar=False)
+        _add_field(p, shown, colouring, bar=False)
         h = _half_height(parts, axis, up, aspect)
         _add_marks(p, [Mark(m.point, tuple(_unit(np.asarray(m.normal) - (np.asarray(m.normal) @ axis) * axis)), m.label)
                        for m in marks], 0.18 * h)
@@ -172,7 +198,7 @@ def render_teeth(parts: pv.UnstructuredGrid, flank: pv.UnstructuredGrid, path: P
             p.add_text(caption, position="upper_left", font_size=10, color="black")
         _look(p, parts.center, -axis, up, h)
         p.subplot(0, 1)
-        _add_field(p, flank, field, cr, title, show_edges, bar=True)
+        _add_field(p, flank, colouring, bar=True)
         side = np.cross(normal, axis)
         hf = _half_height(flank, normal, axis, aspect / 1.25) if flank.n_cells else h
         p.add_text("loaded flank, along the contact normal", position="lower_left", font_size=10, color="black")
@@ -194,14 +220,17 @@ def deformation_scale(displacement, size: float, fraction: float = 0.015) -> flo
     return fraction * size / u if u > 0 else 1.0
 
 
-def render_deformed(parts: pv.UnstructuredGrid, path: Path, *, axis, up, cut, factor: float, cr: ColourRange,
-                    field: str = "von_mises", title: str = "von Mises [MPa]", caption: str = "", size=(1000, 800)) -> Path:
-    """The parts cut through `cut` [mm] and seen along `axis`, displaced by ``displacement`` x `factor`,
-    over the undeformed outline of the cut (grey)."""
+def render_deformed(parts: pv.UnstructuredGrid, path: Path, frame: Frame, colouring: Colouring, *, factor: float,
+                    caption: str = "", size=(1000, 800)) -> Path:
+    """The parts cut through the frame's ``cut`` [mm] and seen along its axis, displaced by ``displacement`` x
+    `factor`, over the undeformed outline of the cut (grey)."""
     if "displacement" not in parts.point_data:
         raise InputError("field", "displacement", "a point field 'displacement' of the grid")
-    axis = _unit(axis)
-    cut = np.asarray(cut, float)
+    if frame.cut is None:
+        raise InputError("frame.cut", None, "a point [mm] whose transverse plane cuts the parts")
+    field, cr, title = colouring.field, colouring.cr, colouring.title
+    axis, up = _unit(frame.axis), frame.up
+    cut = np.asarray(frame.cut, float)
     half = parts.clip(normal=axis, origin=cut, invert=True)
     warped = _surface(half).warp_by_vector("displacement", factor=factor)
     outline = parts.slice(normal=axis, origin=cut + 1e-3 * axis).extract_feature_edges(
@@ -210,7 +239,7 @@ def render_deformed(parts: pv.UnstructuredGrid, path: Path, *, axis, up, cut, fa
     try:
         p.set_background("white")
         p.add_mesh(warped, scalars=field, cmap="jet", clim=(cr.lo, cr.hi), above_color=ABOVE_COLOR if cr.clipped else None,
-                   smooth_shading=True, split_sharp_edges=True, specular=0.25,
+                   smooth_shading=True, split_sharp_edges=True, specular=0.25, show_edges=colouring.show_edges,
                    scalar_bar_args={**_BAR, "title": cr.label(title)})
         if outline.n_points:
             p.add_mesh(outline, color="#303030", line_width=1.5)

@@ -226,7 +226,7 @@ def patch_extent(v: InterfaceView, mesh, pressure: np.ndarray) -> dict:
 
 def flank_map(v: InterfaceView, mesh, result, path: Path, delta: float, hertz: dict | None = None, title: str = "") -> Path:
     """``flank_<interface>_<member>.png``: FE pressure on the loaded flank with the TCA's path and ellipses (module docstring)."""
-    from pipelines.render.maps import Curve, plot_flank_pressure, quads_to_triangles
+    from pipelines.render.maps import Curve, TriField, plot_flank_pressure, quads_to_triangles
 
     q = mesh.face_nodes(flank_set(v))
     nodes, inv = np.unique(q, return_inverse=True)
@@ -254,13 +254,13 @@ def flank_map(v: InterfaceView, mesh, result, path: Path, delta: float, hertz: d
     zoom = min(max(3.0 * hz.b, 1.2 * hz.a, 1.0), 0.3 * (ar.z_max - ar.z_min))
     if not surface_contact(v):
         title = (title + " (TCA: " if title else "(TCA: ") + f"{ContactKind.names.get(int(v.interface.contact.kind), '?')} contact, no ellipse)"
-    return plot_flank_pressure(zr, tri, np.nan_to_num(result.contact_pressure[nodes]), path, curves=curves, point=pt,
-                               area=(ar.z_min, ar.z_max, ar.r_form, ar.r_tip), title=title, zoom=zoom)
+    return plot_flank_pressure(TriField(zr, tri, np.nan_to_num(result.contact_pressure[nodes])), path, curves=curves,
+                               point=pt, area=(ar.z_min, ar.z_max, ar.r_form, ar.r_tip), title=title, zoom=zoom)
 
 
 def section(v: InterfaceView, grid, path: Path, vmax: float, hertz: dict | None = None, title: str = "") -> Path:
     """``section_<interface>_<member>.png``: von Mises on the transverse plane through the contact point."""
-    from pipelines.render.maps import plot_section
+    from pipelines.render.maps import DepthMark, TriField, plot_section
 
     origin, shift = cut_point(v)
     sl = grid.extract_cells(v.cells).slice(normal=v.axis, origin=origin).triangulate()
@@ -276,9 +276,8 @@ def section(v: InterfaceView, grid, path: Path, vmax: float, hertz: dict | None 
     zoom = max(6.0 * b, 1.0) if surface_contact(v) else 1.5
     if not surface_contact(v):
         b = None
-    return plot_section(xy, faces, sl.point_data["von_mises"], path, vmax=vmax, point=(0.0, 0.0),
-                        depth=None if b is None else 0.78 * b,
-                        down=down, zoom=zoom, title=title)
+    return plot_section(TriField(xy, faces, sl.point_data["von_mises"]), path, vmax=vmax, point=(0.0, 0.0),
+                        depth=None if b is None else DepthMark(0.78 * b, down), zoom=zoom, title=title)
 
 
 def root_curves(v: InterfaceView, mesh, result) -> list:
@@ -359,7 +358,7 @@ def design_pictures(run: StressRun, out: Path, *, top: float | None = None, show
     """
     from pipelines.render.images import to_pyvista
     from pipelines.render.maps import plot_root_stress
-    from pipelines.render.views import Mark, clip_range, deformation_scale, render_deformed, render_teeth
+    from pipelines.render.views import Colouring, Frame, Mark, clip_range, deformation_scale, render_deformed, render_teeth
 
     summary, mesh, result, scene, tca = run.summary, run.mesh, run.result, run.scene, run.tca
     out = Path(out)
@@ -380,12 +379,12 @@ def design_pictures(run: StressRun, out: Path, *, top: float | None = None, show
         force = loaded_pair_force(v, summary)
         mark = Mark(tuple(v.point), tuple(v.view), ("loaded pair" if force > 0 else "TCA pair, no load") +
                     f": {v.slave.body} {v.slave.centre} / {v.master.body} {v.master.centre}")
-        f["teeth"] = render_teeth(parts, grid.extract_cells(v.flank_cells), out / f"teeth_{v.stem}.png", axis=v.axis,
-                                  up=v.up, normal=v.view, cr=cr, marks=[mark], caption=head, show_edges=show_edges,
-                                  cut=cut_point(v)[0], size=size).name
+        frame = Frame(v.axis, v.up, v.view, cut_point(v)[0])
+        f["teeth"] = render_teeth(parts, grid.extract_cells(v.flank_cells), out / f"teeth_{v.stem}.png", frame,
+                                  Colouring(cr, show_edges=show_edges), marks=[mark], caption=head, size=size).name
         scale = deformation_scale(parts.point_data["displacement"], float(np.linalg.norm(np.ptp(parts.points, axis=0))))
-        f["deformed"] = render_deformed(parts, out / f"deformed_{v.stem}.png", axis=v.axis, up=v.up, cut=cut_point(v)[0],
-                                        factor=scale, cr=cr, size=(int(0.7 * size[0]), int(1.1 * size[1])),
+        f["deformed"] = render_deformed(parts, out / f"deformed_{v.stem}.png", frame, Colouring(cr),
+                                        factor=scale, size=(int(0.7 * size[0]), int(1.1 * size[1])),
                                         caption=f"{head}\nelastic displacements x {scale:.3g} (rigid-body motion removed)").name
         hz = fe_hertz(v, result, force)
         f["flank"] = flank_map(v, mesh, result, out / f"flank_{v.stem}.png", delta, hertz=hz,

@@ -144,7 +144,7 @@ def zone_images(summary: dict, mesh, result, out: Path, clim: dict | None = None
     not given gets the largest value over this run's zone images. ``overview_range``: the
     :class:`pipelines.render.views.ColourRange` of ``overview.png`` (default: clipped as the pictures).
     """
-    from pipelines.render.images import render_contact_zone, render_overview
+    from pipelines.render.images import Scalars, Zone, render_contact_zone, render_overview
     from pipelines.render.views import clip_range
 
     grid = _grid(mesh, result)
@@ -160,10 +160,12 @@ def zone_images(summary: dict, mesh, result, out: Path, clim: dict | None = None
         vm = peaks[(itf, member)] = float(np.nanmax(sub.point_data["von_mises"], initial=0.0))
         edges = sub.n_cells <= EDGES_UP_TO
         look = np.asarray(sub.center) if sub.n_cells else np.asarray(m["tca_contact_point_mm"])  # frame the whole flank
-        render_contact_zone(sub, "von_mises", look, view, out / f"{stem}.png", radius=r,
-                            clim=(0.0, lim["von_mises"] or 1.0), size=size, show_edges=edges, caption=cap + f"\nmax von Mises {vm:.0f} MPa")
-        render_contact_zone(sub, "contact_pressure", look, view, out / f"{stem}_pressure.png",
-                            radius=r, clim=(0.0, lim["contact_pressure"] or 1.0), size=size, title="contact pressure [MPa]", show_edges=edges,
+        zone = Zone(look, view, r)
+        render_contact_zone(sub, out / f"{stem}.png", zone, Scalars("von_mises", clim=(0.0, lim["von_mises"] or 1.0)),
+                            size=size, show_edges=edges, caption=cap + f"\nmax von Mises {vm:.0f} MPa")
+        render_contact_zone(sub, out / f"{stem}_pressure.png", zone,
+                            Scalars("contact_pressure", "contact pressure [MPa]", (0.0, lim["contact_pressure"] or 1.0)),
+                            size=size, show_edges=edges,
                             caption=cap + f"\nmax contact pressure {m['max_contact_pressure_mpa']:.0f} MPa")
         names += [f"{stem}.png", f"{stem}_pressure.png"]
     cr = overview_range if overview_range is not None else clip_range(result.von_mises, floor=1.1 * (summary.get("max_fillet_von_mises_mpa") or 0.0))

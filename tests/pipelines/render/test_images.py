@@ -3,7 +3,7 @@
 import numpy as np
 
 from fem.mesh.hexmesh import HexMesh
-from pipelines.render.images import image_is_blank, render_contact_zone, render_overview, to_pyvista
+from pipelines.render.images import Scalars, Zone, image_is_blank, render_contact_zone, render_overview, to_pyvista
 
 
 def box_mesh(n=6):
@@ -21,8 +21,8 @@ def test_renders_stress_images_that_are_not_blank(tmp_path):
     m = box_mesh()
     vm = np.linalg.norm(m.points - [10, 10, 10], axis=1) * 30.0  # a smooth synthetic "stress" [MPa]
     grid = to_pyvista(m, {"von_mises": vm})
-    a = render_contact_zone(grid, "von_mises", focus=[10, 10, 10], normal=[1, 1, 1], path=tmp_path / "zone.png",
-                            radius=4.0, caption="test")
+    a = render_contact_zone(grid, tmp_path / "zone.png", Zone([10, 10, 10], [1, 1, 1], 4.0), Scalars("von_mises"),
+                            caption="test")
     b = render_overview(grid, "von_mises", tmp_path / "all.png")
     for p in (a, b):
         assert p.stat().st_size > 20_000

@@ -9,8 +9,9 @@ import pytest
 
 from pipelines.render.html import image, page, table
 from pipelines.render.images import image_is_blank, to_pyvista
-from pipelines.render.maps import Curve, plot_flank_pressure, plot_root_stress, plot_section, quads_to_triangles
-from pipelines.render.views import Mark, clip_range, deformation_scale, render_deformed, render_teeth
+from pipelines.render.maps import (Curve, DepthMark, TriField, plot_flank_pressure, plot_root_stress, plot_section,
+                                   quads_to_triangles)
+from pipelines.render.views import Colouring, Frame, Mark, clip_range, deformation_scale, render_deformed, render_teeth
 from tests.pipelines.render.test_images import box_mesh
 
 
@@ -47,9 +48,9 @@ def test_lit_views_render_and_free_their_plotters(tmp_path):
     vm = 2000.0 * np.exp(-np.sum((x - [10, 5, 5]) ** 2, axis=1) / 4.0)  # a hot spot on the face x = 10
     grid = to_pyvista(m, {"von_mises": vm, "displacement": 1e-3 * (x - 5.0)})
     cr = clip_range(vm, 90.0)
-    a = render_teeth(grid, grid, tmp_path / "teeth.png", axis=[0, 0, 1], up=[0, 1, 0], normal=[1, 0, 0], cr=cr,
-                     marks=[Mark((10, 5, 5), (1, 0, 0), "loaded pair")], cut=(5, 5, 5), show_edges=True, size=(600, 300))
-    b = render_deformed(grid, tmp_path / "def.png", axis=[0, 0, 1], up=[0, 1, 0], cut=(5, 5, 5), factor=100.0, cr=cr,
+    a = render_teeth(grid, grid, tmp_path / "teeth.png", Frame([0, 0, 1], [0, 1, 0], [1, 0, 0], (5, 5, 5)),
+                     Colouring(cr, show_edges=True), marks=[Mark((10, 5, 5), (1, 0, 0), "loaded pair")], size=(600, 300))
+    b = render_deformed(grid, tmp_path / "def.png", Frame([0, 0, 1], [0, 1, 0], cut=(5, 5, 5)), Colouring(cr), factor=100.0,
                         size=(400, 300))
     for p in (a, b):
         assert not image_is_blank(p)
@@ -67,10 +68,10 @@ def test_maps_render(tmp_path):
     p = 2000.0 * np.sqrt(np.clip(1 - (zr[:, 0] / 3) ** 2 - ((zr[:, 1] - 32) / 0.6) ** 2, 0, None))
     t = np.linspace(0, 2 * np.pi, 50)
     ell = Curve(3 * np.cos(t), 32 + 0.6 * np.sin(t), "Hertz ellipse", "-", "m")
-    a = plot_flank_pressure(zr, quads_to_triangles(quads), p, tmp_path / "flank.png", curves=[ell], point=(0, 32),
+    a = plot_flank_pressure(TriField(zr, quads_to_triangles(quads), p), tmp_path / "flank.png", curves=[ell], point=(0, 32),
                             area=(-5, 5, 30.5, 33.5), zoom=2.0)
-    b = plot_section(zr, quads_to_triangles(quads), p, tmp_path / "sec.png", vmax=1000.0, point=(0, 32), depth=0.2,
-                     down=(0, -1), zoom=1.0)
+    b = plot_section(TriField(zr, quads_to_triangles(quads), p), tmp_path / "sec.png", vmax=1000.0, point=(0, 32),
+                     depth=DepthMark(0.2, (0, -1)), zoom=1.0)
     c = plot_root_stress([("tooth", [Curve(np.linspace(-5, 5, 11), np.linspace(0, 100, 11), "fillet")])], tmp_path / "r.png")
     for f in (a, b, c):
         assert not image_is_blank(f)
