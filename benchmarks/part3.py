@@ -24,7 +24,7 @@ from tca.pair.gear_pair import GearPair
 from tca.pair.analysis import TCAOptions, run_pair_tca
 from tca.report_data import indexing_error_placements, table_3_1_gears, table_3_1_planet
 
-from pipelines.analyses.isostatic import plot_carrier_te, plot_sun_center
+from pipelines.render.isostatic import plot_carrier_te, plot_sun_center
 
 d = math.radians
 SUN, PLANET, RING = table_3_1_gears()

@@ -73,7 +73,8 @@ from pipelines.cases.reader import load_case
 from pipelines.cases.validate import validate_case
 from pipelines.cli.outdir import atomic_write_text
 from pipelines.cases.schema import Table
-from pipelines.sweep.points import POSITION_KEYS, STEP_KEY, apply_position, expand_positions, plot_cycle, stress_scalars
+from pipelines.render.sweep import plot_cycle
+from pipelines.sweep.points import POSITION_KEYS, STEP_KEY, apply_position, expand_positions, stress_scalars
 from pipelines.sweep.points import run_point_stress, validate_stress
 
 __all__ = ["add_args", "handle", "build_grid", "run_point", "check_scheduler", "TASKS", "MAX_GRID_POINTS"]

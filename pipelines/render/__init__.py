@@ -1,5 +1,7 @@
-"""Rendering: matplotlib plots (:mod:`.plots`, :mod:`.maps`) and off-screen pyvista images of FE results
-(:mod:`.images`, :mod:`.views`).
+"""Rendering: every plot and image of the pipelines. Matplotlib plots of TCA results and the one
+``savefig`` (:mod:`.plots`), maps of FE fields (:mod:`.maps`), the face-gear train's figures
+(:mod:`.face`), the loaded TCA's (:mod:`.ltca`), a stress sweep through the cycle (:mod:`.sweep`);
+off-screen pyvista images of FE results (:mod:`.images`, :mod:`.views`); HTML pages (:mod:`.html`).
 
 Nothing here changes global state at import. Without a display call :func:`offscreen` once before
 rendering (the ``gearfe`` command and the test suite do)::

@@ -1,8 +1,10 @@
-"""Plots of TCA results (matplotlib, Agg backend): transmission errors and paths of contact."""
+"""Plots of TCA results (matplotlib, Agg backend): transmission errors and paths of contact; :func:`savefig`,
+the one way every plot of :mod:`pipelines.render` is written."""
 
 from __future__ import annotations
 
 import math
+import os
 from pathlib import Path
 
 import matplotlib
@@ -13,16 +15,21 @@ import numpy as np  # noqa: E402
 
 from tca.pair.analysis import ARCSEC, ContactKind, PairTCAResult, ellipse_outlines  # noqa: E402
 
-__all__ = ["plot_pair_te", "plot_contact_paths", "savefig", "side_by_side"]
+__all__ = ["plot_pair_te", "plot_contact_paths", "plot_position_te", "savefig", "side_by_side"]
 
 
 def savefig(fig, path: Path, dpi: int = 130, tight: bool = True) -> Path:
     """Save and close a figure (plots are made in loops: never leak figures).
 
-    ``tight=False`` for figures with a constrained layout: a tight bounding box draws them twice.
+    The file is written under a temporary name and renamed into place: a killed run (a sweep) leaves
+    no half PNG. ``tight=False`` for figures with a constrained layout: a tight bounding box draws
+    them twice.
     """
-    fig.savefig(path, dpi=dpi, bbox_inches="tight" if tight else None)
+    path = Path(path)
+    tmp = path.with_name(f".{path.stem}.tmp{path.suffix}")
+    fig.savefig(tmp, dpi=dpi, bbox_inches="tight" if tight else None)
     plt.close(fig)
+    os.replace(tmp, path)
     return path
 
 
@@ -85,6 +92,30 @@ def plot_contact_paths(r: PairTCAResult, path: Path, names=("gear 1", "gear 2"))
         ax.set_ylabel("radius [mm]")
         ax.grid(alpha=0.3)
     fig.suptitle("Paths of contact and contact ellipses")
+    return savefig(fig, path)
+
+
+def plot_position_te(tca, phi1: float, path: Path, title: str = "") -> Path:
+    """TE [arcsec] over the TCA grid with the analysed position φ1 [rad] marked (a PairTCAResult, or a twin drive's
+    TwinTE with its members)."""
+    fig, ax = plt.subplots(figsize=(8, 4.2))
+    if isinstance(tca, PairTCAResult):
+        ax.plot(np.degrees(tca.phi1), tca.te_arcsec, color="C0", lw=2, label=r"$\Delta\phi_2$ (pair in contact)")
+        at = float(np.interp(phi1, tca.phi1, tca.te_arcsec))
+        ylabel = r"$\Delta\phi_2$ [arcsec]"
+    else:  # TwinTE
+        x = np.degrees(tca.phi1)
+        for k, c in (("a", "C0"), ("b", "C2")):
+            ax.plot(x, tca.members[k].te3 / ARCSEC, color=c, lw=1.2, ls="--", label=f"member {k}")
+        ax.plot(x, tca.te / ARCSEC, color="k", lw=2, label="twin drive, Eq. (1.15)")
+        at = float(np.interp(phi1, tca.phi1, tca.te / ARCSEC))
+        ylabel = r"$\Delta\phi_3$ [arcsec]"
+    ax.plot([math.degrees(phi1)], [at], "o", ms=8, color="C3", zorder=5, label=f"analysed: {math.degrees(phi1):.4f} deg")
+    ax.set_xlabel(r"$\phi_1$ [deg]")
+    ax.set_ylabel(ylabel)
+    ax.set_title(title or "Transmission error and the analysed position")
+    ax.grid(alpha=0.3)
+    ax.legend(loc="best", fontsize=8)
     return savefig(fig, path)
 
 

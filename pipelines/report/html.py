@@ -1,5 +1,5 @@
 """``report.html``: one self-contained page per load case (``gearfe run``), per comparison (``gearfe compare``,
-the designs side by side); the sweep's page is written by :func:`pipelines.sweep.points.plot_cycle`.
+the designs side by side); the sweep's page is written by :func:`pipelines.render.sweep.plot_cycle`.
 
 A page holds the case file, the position, the key results, per mesh the load share, the FE contact
 patch against the TCA and Hertz ellipses (:func:`pipelines.report.figures.design_pictures`

@@ -35,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tca.pair.analysis import ARCSEC, PairTCAResult
+from tca.pair.analysis import PairTCAResult
 
 from pipelines.models.stress.case import StressCase
 
@@ -43,7 +43,7 @@ from pipelines.models.stress.run import StressRun, run_stress
 
 from pipelines.report.figures import design_pictures, parts_of
 
-__all__ = ["STAGES", "run_pipeline", "add_images", "zone_images", "zone_limits", "plot_position_te", "write_report", "zone_name"]
+__all__ = ["STAGES", "run_pipeline", "add_images", "zone_images", "zone_limits", "write_report", "zone_name"]
 
 STAGES = ("tca", "mesh", "solve", "results", "images", "report")
 EDGES_UP_TO = 6000  # element edges are drawn in zone images of at most this many cells
@@ -52,36 +52,6 @@ EDGES_UP_TO = 6000  # element edges are drawn in zone images of at most this man
 def zone_name(interface: str, member: str) -> str:
     """File stem of a contact-zone image, e.g. 'zone_sun-planet_a'."""
     return f"zone_{interface}_{member}"
-
-
-def plot_position_te(tca, phi1: float, path: Path, title: str = "") -> Path:
-    """TE [arcsec] over the TCA grid with the analysed position φ1 [rad] marked."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from pipelines.render.plots import savefig
-
-    fig, ax = plt.subplots(figsize=(8, 4.2))
-    if isinstance(tca, PairTCAResult):
-        ax.plot(np.degrees(tca.phi1), tca.te_arcsec, color="C0", lw=2, label=r"$\Delta\phi_2$ (pair in contact)")
-        at = float(np.interp(phi1, tca.phi1, tca.te_arcsec))
-        ylabel = r"$\Delta\phi_2$ [arcsec]"
-    else:  # TwinTE
-        x = np.degrees(tca.phi1)
-        for k, c in (("a", "C0"), ("b", "C2")):
-            ax.plot(x, tca.members[k].te3 / ARCSEC, color=c, lw=1.2, ls="--", label=f"member {k}")
-        ax.plot(x, tca.te / ARCSEC, color="k", lw=2, label="twin drive, Eq. (1.15)")
-        at = float(np.interp(phi1, tca.phi1, tca.te / ARCSEC))
-        ylabel = r"$\Delta\phi_3$ [arcsec]"
-    ax.plot([math.degrees(phi1)], [at], "o", ms=8, color="C3", zorder=5, label=f"analysed: {math.degrees(phi1):.4f} deg")
-    ax.set_xlabel(r"$\phi_1$ [deg]")
-    ax.set_ylabel(ylabel)
-    ax.set_title(title or "Transmission error and the analysed position")
-    ax.grid(alpha=0.3)
-    ax.legend(loc="best", fontsize=8)
-    return savefig(fig, path)
 
 
 def _zone_radius(m: dict) -> float:
@@ -299,10 +269,10 @@ def run_pipeline(case: StressCase, out: Path, progress=None, clim: dict | None =
     s = run.summary
     stages = {k: s[f"{k}_s"] for k in ("tca", "mesh", "solve", "results")}
     t1 = time.perf_counter()
+    from pipelines.render.plots import plot_contact_paths, plot_position_te
+
     plots = [plot_position_te(run.tca, math.radians(s["position"]["phi1_deg"]), out / "tca_te.png").name]
     if isinstance(run.tca, PairTCAResult):
-        from pipelines.render.plots import plot_contact_paths
-
         g = case.pair
         plots.append(plot_contact_paths(run.tca, out / "tca_paths.png", (g.gear1.name, g.gear2.name)).name)
     stages["images"] = time.perf_counter() - t1
