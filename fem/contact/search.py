@@ -1,6 +1,6 @@
 """The constraints of the contact pairs: gaps, gap gradients, areas, penalties, candidates and seed.
 
-Geometry (small sliding, from the undeformed, TCA-positioned mesh). A point x_s of the slave
+Geometry (small sliding, from the undeformed mesh as the caller positioned it). A point x_s of the slave
 surface is projected on the bilinear master faces, x_p = sum_b N_b(xi, eta) x_b, with the outward
 master normal n; its linearized normal gap is
 
