@@ -12,8 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
-from tca.face.subgear import ARCSEC
 from tca.face.train import FaceTrainResult
+from tca.units import ARCSEC
 
 from pipelines.render.plots import plt, savefig
 

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tca.isostatic.analysis import IsostaticResult
+from tca.isostatic.result import IsostaticResult
 
 from pipelines.render.plots import plt, savefig
 

@@ -8,9 +8,9 @@ from pathlib import Path
 
 import numpy as np
 
-from tca.pair.analysis import ARCSEC, ContactKind
+from tca.pair.result import ContactKind
 from tca.planetary.regulation import TrainRegulation, TrainTE
-from tca.units import ARCMIN
+from tca.units import ARCMIN, ARCSEC
 
 from pipelines.render.plots import plt, savefig
 
