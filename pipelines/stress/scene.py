@@ -45,7 +45,10 @@ elliptical contact (Johnson, Contact Mechanics, eqs. 4.39–4.40; :math:`1/E^* =
 :math:`\min(a/6,\ b/(3|\sin\theta|))` (θ the major axis from the gear axis), kept over a zone of
 half-lengths 1.2 × the ellipse's extent before growing (:class:`mesher.Focus` extents); all sizes
 are divided by ``refine``. Edge and corner contacts (bounded surfaces) keep the profile size and
-refine the axial levels toward the edge (size 2 × profile size, no zone).
+refine the axial levels toward the edge (size 2 × profile size, no zone), except a line contact
+inclined across the flank (a helical pair): under load it touches along the whole line whatever the
+unloaded contact, so it keeps the line's sizes and its zone covers the whole line, 2a, from the edge
+point (:func:`pipelines.stress.sizing.contact_sizes`).
 """
 
 from __future__ import annotations
