@@ -14,6 +14,11 @@ Contact lines. Each pair's line runs through its point along t, cut into slices 
 
 and only slices on both flanks (inside their face grids) with g_s ≤ ``reach`` are kept.
 
+Modelled teeth. Pair k' lies on model tooth -(k' - k) of each gear's condensed model, which is
+centred on the pair in contact; a pair with slices outside the model is listed in ``dropped``.
+:func:`teeth_in_reach` counts the teeth a model needs so that there is none: with ε_α + ε_β > 2 a
+pair two pitches from the pair in contact can touch (three teeth are not enough).
+
 Compliance of slice s under the slice loads F [N]:
 
     δ_s = sum_t W_st F_t + δ_loc(w_s),   W = sum_i A_i C_i A_i^T,  w_s = F_s / Δs [N/mm],
@@ -52,6 +57,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import scipy.sparse as sp
@@ -68,7 +74,8 @@ from tca.pair_te import mesh_contact, tied_branches
 from pipelines.ltca.compliance import flattening
 from pipelines.stress.sizing import hertz_contact
 
-__all__ = ["ContactLines", "contact_lines", "separation", "edge_slices", "hertz_kappa", "LoadedContact", "solve_contact"]
+__all__ = ["ContactLines", "PairSlices", "pair_slices", "loaded_branch", "contact_lines", "teeth_in_reach",
+           "separation", "edge_slices", "hertz_kappa", "LoadedContact", "solve_contact"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -121,31 +128,52 @@ def _rotz(a: float) -> np.ndarray:
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
-def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: float, reach: float,
-                  E: float, nu: float) -> ContactLines:
-    """Slices of the pairs of teeth within ``reach`` [mm] at driver angle ``phi`` [rad] (module docstring);
-    E [MPa] and ν for the pressure law of the slices."""
-    fc1, fc2 = flanks
+class PairSlices(NamedTuple):
+    """The slices of one pair of teeth within reach (pair frame), before they are put on the flank grids."""
+
+    kk: int  # branch of the pair
+    d: int  # offset from the pair in contact, kk - k: world tooth -kk is model tooth -d
+    phr: float  # reference-pair driver angle phi - kk p1 [rad]
+    ph2c: float  # driven-gear angle where the loaded pair touches [rad]
+    arm_c: float  # |m2| at the pair's TCA point [mm]
+    l1: float  # relative curvatures λ1 <= λ2 [1/mm]
+    l2: float
+    xi: np.ndarray  # (S,) along the line or boundary [mm]
+    xs: np.ndarray  # (S, 3) gear-1 points
+    xs2: np.ndarray  # (S, 3) gear-2 points
+    n: np.ndarray  # (S, 3) unit normal out of gear 1's tooth
+    gap: np.ndarray  # (S,) exact separation [mm]
+    touching: np.ndarray  # (S,) on both working areas and within reach
+    length: np.ndarray  # (S,) [mm]
+    edge: np.ndarray  # (S,) boundary code (0 on a line)
+
+
+def loaded_branch(pair: GearPair, mte: MeshTE, phi: float) -> tuple[int, float, np.ndarray, np.ndarray]:
+    """The branch in contact at driver angle ``phi`` [rad] (ties of conjugate flanks resolved as everywhere,
+    :func:`tca.pair_te.mesh_contact`), its Δφ2 [rad], and the values and indices of all branches."""
     val, ks = mte.branches(np.array([phi], float))
     val = val[0]
     te = float(val.max())
     if not math.isfinite(te):
         raise GeometryError(f"{pair.gear1.name}-{pair.gear2.name}", "no contact", f"at phi = {math.degrees(phi):.6f} deg")
-    # the pair in contact; ties (conjugate flanks) resolved as everywhere (tca.pair_te.mesh_contact)
     tied = tied_branches(pair, val).sum() > 1
     k = mesh_contact(mte.result, float(phi)).k if tied else int(ks[int(np.argmax(val))])
+    return k, te, val, ks
+
+
+def pair_slices(pair: GearPair, mte: MeshTE, phi: float, ds: float, reach: float, offsets=None, loaded=None):
+    """The pairs of teeth within ``reach`` [mm] at driver angle ``phi`` [rad] that have slices (module docstring),
+    the pair in contact first, as :class:`PairSlices`; ``offsets``: a predicate on the offset d from the pair in
+    contact (the pairs it rejects are not cut); ``loaded``: :func:`loaded_branch` at phi if known."""
+    k, te, val, ks = loaded if loaded is not None else loaded_branch(pair, mte, phi)
     m1, m2 = pair.mounts()
     f1, f2 = PlacedFlank(pair.gear1, pair.side1, m1), PlacedFlank(pair.gear2, pair.side2, m2)
-    p1, p2 = 2 * math.pi / pair.gear1.teeth, 2 * math.pi / pair.gear2.teeth
-    N1, N2 = pair.gear1.teeth, pair.gear2.teeth
+    p1 = 2 * math.pi / pair.gear1.teeth
     B = max(pair.gear1.face_width, pair.gear2.face_width)
-    rows = []
-    branches, teeth, dropped = [], [], []
-    arm0 = float("nan")
     order = sorted(range(len(ks)), key=lambda i: (ks[i] != k, abs(ks[i] - k)))  # the loaded pair first
     for i in order:
         kk = int(ks[i])
-        if not math.isfinite(val[i]):
+        if not math.isfinite(val[i]) or (offsets is not None and not offsets(kk - k)):
             continue
         gam = te - float(val[i])
         phr = phi - kk * p1
@@ -168,11 +196,6 @@ def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: fl
         arm_c = abs(float(np.cross(x0 - m2.origin, n) @ m2.axis))
         if gam * arm_c > reach:
             continue
-        d = kk - k  # model teeth: world tooth -kk is model tooth k - kk
-        j1, j2 = (-d) % N1, (-d) % N2
-        if j1 not in fc1.teeth or j2 not in fc2.teeth:
-            dropped.append(kk)
-            continue
         ph2c = pair.ratio * phr + te  # the driven gear where the loaded pair touches
         kind = _ref_kind(mte, phr)
         parts = []
@@ -190,26 +213,49 @@ def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: fl
         if not parts:
             continue
         xi, xs, xs2, n_s, g, conv, seg, edge = (np.concatenate([q[j] for q in parts]) for j in range(8))
-        arm = np.abs(np.einsum("ij,ij->i", np.cross(xs - m2.origin, n_s), np.broadcast_to(m2.axis, xs.shape)))
+        yield PairSlices(kk, kk - k, phr, ph2c, arm_c, l1, l2, xi, xs, xs2, n_s, g, conv & (g <= reach), seg, edge)
+
+
+def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: float, reach: float,
+                  E: float, nu: float) -> ContactLines:
+    """Slices of the pairs of teeth within ``reach`` [mm] at driver angle ``phi`` [rad] (module docstring);
+    E [MPa] and ν for the pressure law of the slices. Pairs with slices outside the modelled teeth are
+    listed in ``dropped`` (:func:`teeth_in_reach` sizes the model so that there are none)."""
+    fc1, fc2 = flanks
+    m1, m2 = pair.mounts()
+    p1, p2 = 2 * math.pi / pair.gear1.teeth, 2 * math.pi / pair.gear2.teeth
+    N1, N2 = pair.gear1.teeth, pair.gear2.teeth
+    rows = []
+    branches, teeth, dropped = [], [], []
+    arm0 = float("nan")
+    loaded = loaded_branch(pair, mte, phi)
+    k, te = loaded[0], loaded[1]
+    for q in pair_slices(pair, mte, phi, ds, reach, loaded=loaded):
+        kk, d = q.kk, q.d
+        if (-d) % N1 not in fc1.teeth or (-d) % N2 not in fc2.teeth:  # world tooth -kk is model tooth -d
+            if q.touching.any():
+                dropped.append(kk)
+            continue
+        arm = np.abs(np.einsum("ij,ij->i", np.cross(q.xs - m2.origin, q.n), np.broadcast_to(m2.axis, q.xs.shape)))
         # slice points in each model's gear frame, on the model tooth of this pair
-        R1, _ = m1.rotation(phr)
-        R2, _ = m2.rotation(ph2c)
-        xg1 = (xs - m1.origin) @ R1 @ _rotz(-d * p1).T
-        xg2 = (xs2 - m2.origin) @ R2 @ _rotz(-d * p2).T
-        # on the working areas (``conv``, exact); the flank grids' faces for the compliance (the faceted grid
+        R1, _ = m1.rotation(q.phr)
+        R2, _ = m2.rotation(q.ph2c)
+        xg1 = (q.xs - m1.origin) @ R1 @ _rotz(-d * p1).T
+        xg2 = (q.xs2 - m2.origin) @ R2 @ _rotz(-d * p2).T
+        # on the working areas (``touching``, exact); the flank grids' faces for the compliance (the faceted grid
         # approximates the boundary curves: a face within EDGE_SLACK of a face size)
         loc1, loc2 = fc1.locate(xg1, EDGE_SLACK), fc2.locate(xg2, EDGE_SLACK)
-        ok = conv & loc1.inside & loc2.inside & (g <= reach)
+        ok = q.touching & loc1.inside & loc2.inside
         if not ok.any():
             continue
-        if kk == k:
-            arm0 = arm_c if not edge.any() else float(arm[ok][np.argmin(g[ok])])
+        if d == 0:
+            arm0 = q.arm_c if not q.edge.any() else float(arm[ok][np.argmin(q.gap[ok])])
         idx = len(branches)
         branches.append(kk)
         teeth.append((int((-kk) % N1), int((-kk) % N2)))
-        rows.append((idx, xi[ok], xs[ok], g[ok], arm[ok], np.full(ok.sum(), 1.0 / l2),
+        rows.append((idx, q.xi[ok], q.xs[ok], q.gap[ok], arm[ok], np.full(ok.sum(), 1.0 / q.l2),
                      np.stack([loc1.depth[ok], loc2.depth[ok]], 1), loc1, loc2, ok,
-                     np.full(ok.sum(), hertz_kappa(l1, l2, E, nu)), seg[ok], edge[ok]))
+                     np.full(ok.sum(), hertz_kappa(q.l1, q.l2, E, nu)), q.length[ok], q.edge[ok]))
     if not rows or branches[0] != k:
         raise GeometryError(f"{pair.gear1.name}-{pair.gear2.name}", "contact line",
                             f"the loaded pair at phi = {math.degrees(phi):.6f} deg is not on the modelled flanks")
@@ -221,6 +267,23 @@ def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: fl
     W = 0.5 * (W + W.T)
     return ContactLines(float(phi), te, k, tuple(branches), tuple(teeth), pidx, cat(1), cat(2), cat(3), cat(4), cat(5),
                         cat(10), cat(6), float(ds), W, arm0, tuple(dropped), cat(11), cat(12))
+
+
+def teeth_in_reach(pair: GearPair, mte: MeshTE, phis, ds: float, reach: float, teeth: int = 1) -> int:
+    """Teeth per gear that a model centred on the pair in contact needs to hold every pair of teeth with slices
+    within ``reach`` [mm] (:func:`pair_slices`) at the driver angles ``phis`` [rad]: 2 max|d| + 1, at least
+    ``teeth`` (the pairs inside that model are not cut again).
+
+    With ε_α + ε_β > 2 a third pair may touch on either side of the pair in contact: the crowned helical pair of
+    ltca_helical_crowned.toml (ε_γ = 2.7) has, at φ1 = -10.565°, a pair two pitches away 1.6 µm from contact,
+    which a three-tooth model left out.
+    """
+    half = (teeth - 1) // 2
+    for phi in np.asarray(phis, float):
+        for q in pair_slices(pair, mte, float(phi), ds, reach, offsets=lambda d: abs(d) > half):
+            if q.touching.any():
+                half = max(half, abs(q.d))
+    return 2 * half + 1
 
 
 def hertz_kappa(l1: float, l2: float, E: float, nu: float) -> float:
