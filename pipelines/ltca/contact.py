@@ -25,8 +25,14 @@ Compliance of slice s under the slice loads F [N]:
 
 A_i the bilinear weights of the slice points on gear i's flank grid and C_i its condensed
 compliance (:mod:`pipelines.ltca.compliance`, global part), δ_loc the Hertzian flattening of both
-bodies (:func:`pipelines.ltca.compliance.flattening`, constant c) with the Hertz half-width b_s = (8 w_s R (1 - ν²) / (π E))^(1/2), R = 1/λ2 (Johnson 1985,
+bodies (:func:`pipelines.ltca.compliance.flattening`, constant c) with the Hertz half-width b_s = (8 w_s R_s (1 - ν²) / (π E))^(1/2), R_s = 1/λ2 (Johnson 1985,
 Eq. 4.43 for two cylinders of one material).
+
+Curvatures of a slice. λ1 ≤ λ2 are those of the slice's own two points (:func:`_curvatures`), not the
+pair's TCA point's: a helical contact line crosses the whole profile, and across it λ2 =
+cos β_b (1/ρ1 + 1/ρ2) (ρ_i the transverse roll lengths) grows from the pinion's tip to its root (by a
+factor 2.3 along the lines of ltca_helical_crowned.toml; with the value of a TCA point at the pinion's tip the
+slice pressures there were up to 34 % low).
 
 Contact problem (linear complementarity with torque balance). The driven gear turns rigidly by
 Δ [rad] against the torque T [N mm]:
@@ -45,8 +51,8 @@ load per unit length of the line is w(ξ) = (π/2) p(ξ) b(ξ) with p(ξ) = p0 (
 b(ξ) = b (1 - ξ²/a²)^(1/2), so p/b = p0/b =: κ along the whole line, a constant of the curvatures
 and the material alone (p0 and b both grow as P^(1/3)), and
 
-    p_s = (2 κ w_s / π)^(1/2),      κ = p0 / b of the pair's Hertz ellipse (:func:`hertz_kappa`,
-                                    Johnson 1985, Eqs. 4.39–4.40),
+    p_s = (2 κ_s w_s / π)^(1/2),    κ_s = p0 / b of the Hertz ellipse of the slice's curvatures
+                                    (:func:`hertz_kappa`, Johnson 1985, Eqs. 4.39–4.40),
 
 which is exact for a Hertzian load distribution and becomes the line-contact value
 (w E* / (π R))^(1/2), κ = E* λ2 / 2, when λ1 → 0. (The line-contact value alone, which ignores the
@@ -93,7 +99,7 @@ class ContactLines:
     gap: np.ndarray  # (S,) initial separation [mm]
     arm: np.ndarray  # (S,) |m2_s| [mm]
     radius: np.ndarray  # (S,) R = 1/λ2 [mm]
-    kappa: np.ndarray  # (S,) p0/b of the pair's Hertz ellipse [MPa/mm] (module docstring)
+    kappa: np.ndarray  # (S,) p0/b of the Hertz ellipse of the slice's curvatures [MPa/mm] (module docstring)
     depth: np.ndarray  # (S, 2) distance to the teeth's centre planes [mm]
     ds: float  # slice length [mm] (nominal)
     W: np.ndarray  # (S, S) global compliance [mm/N]
@@ -146,6 +152,7 @@ class PairSlices(NamedTuple):
     touching: np.ndarray  # (S,) on both working areas and within reach
     length: np.ndarray  # (S,) [mm]
     edge: np.ndarray  # (S,) boundary code (0 on a line)
+    lam: np.ndarray  # (S, 2) relative curvatures λ1 <= λ2 of each slice's two points [1/mm]
 
 
 def loaded_branch(pair: GearPair, mte: MeshTE, phi: float) -> tuple[int, float, np.ndarray, np.ndarray]:
@@ -212,8 +219,10 @@ def pair_slices(pair: GearPair, mte: MeshTE, phi: float, ds: float, reach: float
                 parts.append(eg)
         if not parts:
             continue
-        xi, xs, xs2, n_s, g, conv, seg, edge = (np.concatenate([q[j] for q in parts]) for j in range(8))
-        yield PairSlices(kk, kk - k, phr, ph2c, arm_c, l1, l2, xi, xs, xs2, n_s, g, conv & (g <= reach), seg, edge)
+        xi, xs, xs2, n_s, g, conv, seg, edge, lam = (np.concatenate([q[j] for q in parts]) for j in range(9))
+        bad = ~(np.isfinite(lam).all(1) & (lam[:, 1] > 0))  # the pair's curvatures where a slice's are not convex
+        lam[bad] = (l1, l2)
+        yield PairSlices(kk, kk - k, phr, ph2c, arm_c, l1, l2, xi, xs, xs2, n_s, g, conv & (g <= reach), seg, edge, lam)
 
 
 def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: float, reach: float,
@@ -253,9 +262,10 @@ def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: fl
         idx = len(branches)
         branches.append(kk)
         teeth.append((int((-kk) % N1), int((-kk) % N2)))
-        rows.append((idx, q.xi[ok], q.xs[ok], q.gap[ok], arm[ok], np.full(ok.sum(), 1.0 / q.l2),
+        lam = q.lam[ok]
+        rows.append((idx, q.xi[ok], q.xs[ok], q.gap[ok], arm[ok], 1.0 / lam[:, 1],
                      np.stack([loc1.depth[ok], loc2.depth[ok]], 1), loc1, loc2, ok,
-                     np.full(ok.sum(), hertz_kappa(q.l1, q.l2, E, nu)), q.length[ok], q.edge[ok]))
+                     np.array([hertz_kappa(a, b, E, nu) for a, b in lam]), q.length[ok], q.edge[ok]))
     if not rows or branches[0] != k:
         raise GeometryError(f"{pair.gear1.name}-{pair.gear2.name}", "contact line",
                             f"the loaded pair at phi = {math.degrees(phi):.6f} deg is not on the modelled flanks")
@@ -327,9 +337,9 @@ def _line_slices(f1, f2, par, x0, t, L: float, ds: float, phi1: float, phi2: flo
     seg_len = (hi - lo) / n_sl
     xi = lo + seg_len * (np.arange(n_sl) + 0.5)
     xl = x0[None, :] + xi[:, None] * t[None, :]
-    xs, n_s, xs2, g, conv = separation(f1, f2, par, xl, phi1, phi2, gap0)
+    xs, n_s, xs2, g, conv, lam = separation(f1, f2, par, xl, phi1, phi2, gap0, with_curvature=True)
     xs, xs2 = np.where(conv[:, None], xs, xl), np.where(conv[:, None], xs2, xl)
-    return xi, xs, xs2, n_s, g, conv, np.full(len(xi), seg_len), np.zeros(len(xi), int)
+    return xi, xs, xs2, n_s, g, conv, np.full(len(xi), seg_len), np.zeros(len(xi), int), lam
 
 
 def _clip(xi: np.ndarray, margin: np.ndarray, conv: np.ndarray, i0: int, ds: float) -> tuple[float, float]:
@@ -383,8 +393,8 @@ def edge_slices(f1: PlacedFlank, f2: PlacedFlank, par, phi1: float, phi2: float,
     is its distance from the other flank along that flank's normal (:func:`tca.contact.foot_points`).
     Returns xi (arc length along the boundary from its start: z_min for a tip, the form circle for a face
     end), gear-1 and gear-2 points (S, 3), the unit
-    normal out of gear 1's tooth, separations [mm], converged mask, piece lengths [mm] and the
-    boundary code 10 flank + boundary.
+    normal out of gear 1's tooth, separations [mm], converged mask, piece lengths [mm], the
+    boundary code 10 flank + boundary and the relative curvatures (S, 2) of the extended surfaces there.
     """
     out = []
     sides = ((1, f1, f2, phi1, phi2, par[0:2], par[2:4]), (2, f2, f1, phi2, phi1, par[2:4], par[0:2]))
@@ -397,18 +407,18 @@ def edge_slices(f1: PlacedFlank, f2: PlacedFlank, par, phi1: float, phi2: float,
             ok &= in_area(g, uvf)  # the foot point on the other flank's working area
             gap = np.einsum("ij,ij->i", we.r - wg.r, wg.n)
             if which == 1:
-                x1, x2, nrm = we.r, wg.r, -wg.n
+                x1, x2, nrm, lam = we.r, wg.r, -wg.n, _curvatures(we, wg, f1)
             else:
-                x1, x2, nrm = wg.r, we.r, wg.n
-            out.append((sm, x1, x2, nrm, gap, ok, np.full(n, piece), np.full(n, 10 * which + b)))
+                x1, x2, nrm, lam = wg.r, we.r, wg.n, _curvatures(wg, we, f1)
+            out.append((sm, x1, x2, nrm, gap, ok, np.full(n, piece), np.full(n, 10 * which + b), lam))
     if not out:
         e = np.zeros((0, 3))
-        return np.zeros(0), e, e, e, np.zeros(0), np.zeros(0, bool), np.zeros(0), np.zeros(0, int)
-    return tuple(np.concatenate([o[j] for o in out]) for j in range(8))
+        return np.zeros(0), e, e, e, np.zeros(0), np.zeros(0, bool), np.zeros(0), np.zeros(0, int), np.zeros((0, 2))
+    return tuple(np.concatenate([o[j] for o in out]) for j in range(9))
 
 
 def separation(f1: PlacedFlank, f2: PlacedFlank, par, x, phi1: float, phi2: float, gap0: float, tol: float = 1e-10,
-               maxit: int = 30, with_margin: bool = False):
+               maxit: int = 30, with_margin: bool = False, with_curvature: bool = False):
     """Exact separation of two flanks along gear 1's normal at the points of gear 1's flank nearest x (S, 3).
 
     Gear 1's flank at angle phi1, gear 2's at phi2 [rad]; ``par`` (u1, v1, u2, v2) [mm] a point near the
@@ -416,7 +426,8 @@ def separation(f1: PlacedFlank, f2: PlacedFlank, par, x, phi1: float, phi2: floa
     (:func:`tca.contact.foot_points`), then the normal line P1 + s n1 meets flank 2
     at P2 (Newton on r2(u2, v2) - P1 - s n1 = 0): s is the separation [mm] (> 0 apart). Returns P1,
     n1, P2, s and the mask of points where both solves converged with both points inside their flanks'
-    working areas (:func:`in_area`); ``with_margin``: also the larger of the two :func:`area_margin`.
+    working areas (:func:`in_area`); ``with_margin``: also the larger of the two :func:`area_margin`;
+    ``with_curvature``: also the relative curvatures λ1 <= λ2 (S, 2) [1/mm] of the two points (:func:`_curvatures`).
     """
     S = len(x)
     w1, ok1, uv1 = foot_points(f1, par[:2], phi1, x, tol, maxit)
@@ -445,9 +456,19 @@ def separation(f1: PlacedFlank, f2: PlacedFlank, par, x, phi1: float, phi2: floa
             break
     w2, _, _ = f2.world(u2, v2, ph2)
     margin = np.maximum(area_margin(f1, np.stack([u, v], 1)), area_margin(f2, np.stack([u2, v2], 1)))
+    ok = ok1 & ok2 & np.isfinite(sg) & (margin <= BOUNDARY_TOL)
     if with_margin:
-        return P1, n1, w2.r, sg, ok1 & ok2 & np.isfinite(sg) & (margin <= BOUNDARY_TOL), margin
-    return P1, n1, w2.r, sg, ok1 & ok2 & np.isfinite(sg) & (margin <= BOUNDARY_TOL)
+        return P1, n1, w2.r, sg, ok, margin
+    if with_curvature:
+        return P1, n1, w2.r, sg, ok, _curvatures(w1, w2, f1)
+    return P1, n1, w2.r, sg, ok
+
+
+def _curvatures(w1, w2, f1: PlacedFlank) -> np.ndarray:
+    """Relative curvatures λ1 <= λ2 (S, 2) [1/mm] of gear 1's points w1 and gear 2's points w2 (world), as at the
+    TCA point (:func:`tca.ellipse.contact_ellipse`)."""
+    _, _, _, lam = contact_ellipse(w1, w2, 1.0, np.broadcast_to(f1.mount.axis, w1.r.shape))
+    return lam
 
 
 def _stack(locs, oks, m):
