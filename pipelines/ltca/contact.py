@@ -407,9 +407,9 @@ def edge_slices(f1: PlacedFlank, f2: PlacedFlank, par, phi1: float, phi2: float,
             ok &= in_area(g, uvf)  # the foot point on the other flank's working area
             gap = np.einsum("ij,ij->i", we.r - wg.r, wg.n)
             if which == 1:
-                x1, x2, nrm, lam = we.r, wg.r, -wg.n, _curvatures(we, wg, f1)
+                x1, x2, nrm, lam = we.r, wg.r, -wg.n, _curvatures(we, wg, f1, ok)
             else:
-                x1, x2, nrm, lam = wg.r, we.r, wg.n, _curvatures(wg, we, f1)
+                x1, x2, nrm, lam = wg.r, we.r, wg.n, _curvatures(wg, we, f1, ok)
             out.append((sm, x1, x2, nrm, gap, ok, np.full(n, piece), np.full(n, 10 * which + b), lam))
     if not out:
         e = np.zeros((0, 3))
@@ -460,14 +460,18 @@ def separation(f1: PlacedFlank, f2: PlacedFlank, par, x, phi1: float, phi2: floa
     if with_margin:
         return P1, n1, w2.r, sg, ok, margin
     if with_curvature:
-        return P1, n1, w2.r, sg, ok, _curvatures(w1, w2, f1)
+        return P1, n1, w2.r, sg, ok, _curvatures(w1, w2, f1, ok)
     return P1, n1, w2.r, sg, ok
 
 
-def _curvatures(w1, w2, f1: PlacedFlank) -> np.ndarray:
+def _curvatures(w1, w2, f1: PlacedFlank, ok: np.ndarray) -> np.ndarray:
     """Relative curvatures λ1 <= λ2 (S, 2) [1/mm] of gear 1's points w1 and gear 2's points w2 (world), as at the
-    TCA point (:func:`tca.ellipse.contact_ellipse`)."""
-    _, _, _, lam = contact_ellipse(w1, w2, 1.0, np.broadcast_to(f1.mount.axis, w1.r.shape))
+    TCA point (:func:`tca.ellipse.contact_ellipse`); NaN outside ``ok`` (points that did not converge on a flank)."""
+    lam = np.full((len(ok), 2), np.nan)
+    ok = ok & np.all([np.isfinite(a).all(axis=1) for a in (*w1, *w2)], axis=0)
+    if ok.any():
+        sub = lambda w: type(w)(*(a[ok] for a in w))  # noqa: E731
+        lam[ok] = contact_ellipse(sub(w1), sub(w2), 1.0, np.broadcast_to(f1.mount.axis, (int(ok.sum()), 3)))[3]
     return lam
 
 
