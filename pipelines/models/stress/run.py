@@ -240,6 +240,7 @@ def run_stress(case: StressCase, out: Path, progress=None) -> StressRun:
     mesh = mesh_scene(scene)
     t_mesh = time.perf_counter() - t1
     say(f"mesh: {len(scene.parts)} parts, {mesh.n_cells} elements, {3 * mesh.n_points} DOF in {t_mesh:.1f} s")
+    check_resources(scene, case.mesh, mesh=mesh)  # the real size, before the solve
     t1 = time.perf_counter()
     say("solve: contact FE (" + case.fe.element + ")")
     r, model, attempts = solve_scene(scene, mesh, case.fe, say)
