@@ -36,7 +36,8 @@ from tca.rating.rating import GearRating, PairRating, rate
 
 from pipelines.cases.rating import MeshRating
 
-__all__ = ["STANDARD", "rating_record", "gear_record", "ltca_factors", "SIMPLIFIED_MARKS", "print_rating"]
+__all__ = ["STANDARD", "rating_record", "gear_record", "ltca_factors", "SIMPLIFIED_MARKS", "print_rating",
+           "ltca_rating"]
 
 STANDARD = "ISO 6336-1/-2/-3/-5 method B (2006 formulas, tca.rating; docs/rating.md)"
 SIMPLIFIED_MARKS = ("taken as 1", "simplified", "hardness-only", "solid gear", "no rim thickness")
@@ -170,3 +171,31 @@ def print_rating(rec: dict, say=print) -> None:
         say(f"  {k}: ISO {v['iso']:.4f}, gearfe {v['gearfe']:.4f}")
     for w in rec.get("warnings", []):
         say(f"  warning: {w}")
+
+
+def _read_csv(path) -> list[dict]:
+    import csv
+
+    with open(path, newline="") as fh:
+        return [{k: (float(v) if v not in ("", None) and k != "pair" else (v or None)) for k, v in r.items()}
+                for r in csv.DictReader(fh)]
+
+
+def ltca_rating(case, summary: dict, folder) -> dict | None:
+    """The ``rating`` of a ``gearfe ltca`` run: ISO's factors, and K_Hβ, K_Hα of the loaded TCA at the case's
+    torque (from ``folder``'s results.csv and pressure.csv); None without ``[rating]``."""
+    from pathlib import Path
+
+    from pipelines.cases.rating import rated_meshes
+
+    meshes = rated_meshes(case)
+    if not meshes:
+        return None
+    folder = Path(folder)
+    b = min(case.pair.gear1.face_width, case.pair.gear2.face_width)
+    bins = max(2, int(round(b / summary["flank_grid_mm"]["axial"])))
+    f, det = ltca_factors(_read_csv(folder / "results.csv"), _read_csv(folder / "pressure.csv"), case.torque * 1e-3,
+                          b, bins)
+    if case.rating.given.get("k_gamma") is not None:
+        f = AnalysisFactors(f.k_h_beta, f.k_h_alpha, case.rating.given["k_gamma"])
+    return rating_record(meshes, {"pair": f}, {"pair": det})

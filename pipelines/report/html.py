@@ -12,6 +12,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from pipelines.render.html import fmt, grid, image, pre, section, table, write_page
+from pipelines.report.rating import rating_html
 
 __all__ = ["KEY_RESULTS", "PICTURES", "run_html", "compare_html", "mesh_rows"]
 
@@ -107,7 +108,7 @@ def run_html(s: dict, folder: Path, case_text: str = "", path: Path | None = Non
     title = s.get("title") or s["model"]
     head = (f"<p>Model <b>{fmt(s['model'])}</b>, torque {s['torque_nm']:g} N·m, case <code>{fmt(s.get('case', ''))}</code>, "
             f"{s.get('dofs', 0)} DOF.</p>" + _position(s))
-    blocks = [head, *_results(s), section("Pictures", *_pictures(s, folder)), _stages(s)]
+    blocks = [head, *_results(s), rating_html(s.get("rating")), section("Pictures", *_pictures(s, folder)), _stages(s)]
     if case_text:
         blocks.append(section("Case file", pre(case_text)))
     blocks.append(f'<p class="note">Stress recovery: {fmt(s.get("stress_recovery", ""))}. '

@@ -37,6 +37,9 @@ import numpy as np
 
 from tca.pair.analysis import PairTCAResult
 
+from pipelines.analyses.rating import rating_record
+from pipelines.cases.rating import rated_meshes
+from pipelines.jsonio import plain
 from pipelines.models.stress.case import StressCase
 
 from pipelines.models.stress.run import StressRun, run_stress
@@ -276,7 +279,8 @@ def run_pipeline(case: StressCase, out: Path, progress=None, clim: dict | None =
         g = case.pair
         plots.append(plot_contact_paths(run.tca, out / "tca_paths.png", (g.gear1.name, g.gear2.name)).name)
     stages["images"] = time.perf_counter() - t1
-    s = {**s, "images": [], "plots": plots, "files": ["result.vtu", "report.md", "summary.json", *plots], "stages": stages}
+    s = {**s, "images": [], "plots": plots, "files": ["result.vtu", "report.md", "summary.json", *plots], "stages": stages,
+         "rating": plain(rating_record(rated_meshes(case)))}
     if images:
         return add_images(replace(run, summary=s), out, clim, progress, show_edges=show_edges)
     return replace(run, summary=_report(s, out, say))
