@@ -22,7 +22,7 @@ from pipelines.render import offscreen
 
 __all__ = ["offscreen", "to_pyvista", "Zone", "Scalars", "render_contact_zone", "render_overview", "image_is_blank"]
 
-SCALAR_BAR = dict(title_font_size=18, label_font_size=14, n_labels=6, fmt="%.0f", vertical=True,
+SCALAR_BAR = dict(title_font_size=24, label_font_size=22, n_labels=6, fmt="%.0f", vertical=True,
                   position_x=0.86, position_y=0.12, height=0.76, width=0.06)
 
 

@@ -127,8 +127,12 @@ def zone_images(summary: dict, mesh, result, out: Path, clim: dict | None = None
     for itf, member, m, sub, r in zones:
         view = _view(m)
         share = summary["load_share"][itf]["members"][member]
+        teeth = {n: t for n, t in summary["interfaces"][itf].get("teeth", {}).items() if n.startswith(f"{member}/")}
+        loaded = next((n for n, t in teeth.items() if t.get("offset") == 0), None)
+        pair = (f"; loaded pair {loaded.split('/')[-1]} {summary['load_share'][itf]['teeth'][loaded]:.3f}"
+                if loaded is not None and len(teeth) > 1 else "")
         edge = "edge contact" if m.get("edge_contact") else "no edge contact"
-        cap = f"{itf}, member {member} ({m['slave_body']} flank): load share {share:.3f}, {edge}"
+        cap = f"{itf}, member {member} ({m['slave_body']} flank): member share {share:.3f}{pair}, {edge}"
         stem = zone_name(itf, member)
         vm = peaks[(itf, member)] = float(np.nanmax(sub.point_data["von_mises"], initial=0.0))
         edges = sub.n_cells <= EDGES_UP_TO
@@ -148,6 +152,53 @@ def zone_images(summary: dict, mesh, result, out: Path, clim: dict | None = None
                     caption=f"{summary.get('title') or summary.get('model')}: max von Mises {summary['max_von_mises_mpa']:.0f} MPa")
     names.append("overview.png")
     return names, peaks
+
+
+def peak_images(summary: dict, mesh, result, out: Path, size=(1200, 900)) -> list[tuple[str, str]]:
+    """A picture of every flagged peak: (file, caption). Edge and corner contact peaks: the contact pressure on the
+    slave body around the point, seen along the flank's normal (the mate hidden); contact-induced fillet peaks: the
+    largest principal stress on that gear around the point, seen along its axis."""
+    from pipelines.render.images import Scalars, Zone, render_contact_zone, to_pyvista
+
+    out_files = []
+    p = np.nan_to_num(result.contact_pressure)
+    grid = to_pyvista(mesh, {"contact_pressure": p, "max_principal": result.principal[:, 0]})
+    centres = mesh.points[mesh.cells].mean(axis=1)
+
+    def sub(body: str, at, radius):
+        cells = np.flatnonzero((mesh.cell_body == mesh.bodies.index(body))
+                               & (np.linalg.norm(centres - np.asarray(at), axis=1) < 3 * radius))
+        return grid.extract_cells(cells)
+
+    for k, e in enumerate(summary.get("edge_peaks", [])):
+        at, body = e["edge_point_mm"], e.get("slave_body")
+        if body is None:
+            continue
+        radius = 1.5
+        g = sub(body, at, radius)
+        vals = g.point_data["contact_pressure"]
+        f = f"peak_edge_{k}.png"
+        cap = (f"{e['edge_kind']} of the {e['edge_of']}, pair {e['pair'].split('/')[-1]}: {e['edge_peak_mpa']:.0f} MPa "
+               f"(smooth peak of the pair {e['smooth_peak_mpa']:.0f} MPa)")
+        render_contact_zone(g, out / f, Zone(tuple(at), tuple(e["edge_normal"]), radius),
+                            Scalars("contact_pressure", "contact pressure [MPa]", (0.0, float(vals.max(initial=1.0)) or 1.0)),
+                            size=size, caption=cap, show_edges=g.n_cells <= EDGES_UP_TO)
+        out_files.append((f, cap + f"; at ({', '.join(f'{x:.2f}' for x in at)}) mm"))
+    for k, fp in enumerate(summary.get("fillet_peaks", [])):
+        body = fp["set"].split("/")[0]
+        at = fp["point_mm"]
+        radius = 1.5
+        g = sub(body, at, radius)
+        ref = mesh.reference_points.get(body)
+        axis = tuple(ref.axis) if ref is not None else (0.0, 0.0, 1.0)
+        f = f"peak_fillet_{k}.png"
+        cap = (f"{fp['cause']} on {fp['set']}: {fp['value_mpa']:.0f} MPa (the fillet away from it: "
+               f"{fp['clear_max_mpa']:.0f} MPa)")
+        render_contact_zone(g, out / f, Zone(tuple(at), axis, radius),
+                            Scalars("max_principal", "max principal [MPa]", None), size=size, caption=cap,
+                            show_edges=g.n_cells <= EDGES_UP_TO)
+        out_files.append((f, cap + f"; at ({', '.join(f'{x:.2f}' for x in at)}) mm"))
+    return out_files
 
 
 def _fmt(v, nd=4) -> str:
@@ -236,6 +287,8 @@ def add_images(run: StressRun, out: Path, clim: dict | None = None, progress=Non
     summary = run.summary
     pics = design_pictures(run, Path(out), top=top, show_edges=show_edges)
     names, peaks = zone_images(summary, run.mesh, run.result, Path(out), clim, overview_range=pics.colour)
+    flagged = peak_images(summary, run.mesh, run.result, Path(out))
+    names += [f for f, _ in flagged]
     for f in pics.files.values():
         names += list(f.values())
     dt = time.perf_counter() - t1
@@ -245,6 +298,7 @@ def add_images(run: StressRun, out: Path, clim: dict | None = None, progress=Non
     c = pics.colour
     pictures = {"files": pics.files, "records": pics.records, "von_mises_range_mpa": [c.lo, c.hi], "von_mises_shown_max_mpa": c.max,
                 "clipped": c.clipped, "clip_percentile": c.percentile}
+    pictures["peaks"] = [{"file": f, "caption": c} for f, c in flagged]
     s = {**summary, "interfaces": interfaces, "images": names, "pictures": pictures, "files": [*summary["files"], *names]}
     s["stages"] = {**summary["stages"], "images": summary["stages"].get("images", 0.0) + dt}
     return replace(run, summary=_report(s, Path(out), say))

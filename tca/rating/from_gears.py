@@ -47,7 +47,8 @@ from tca.rating.rating import GearRatingData, Operation, RatingCase
 from tca.rating.root_stress import RootFactors, root_factors
 
 __all__ = ["GearSpec", "Service", "Load", "RatedPair", "pinion_first", "pair_data", "rating_case", "mesh_misalignment",
-           "GIVEN_KEYS"]
+           "GIVEN_KEYS",
+           "NominalContact", "nominal_contact"]
 
 GIVEN_KEYS = ("k_gamma", "k_v", "k_h_beta", "k_f_beta", "k_h_alpha", "k_f_alpha")  # factors a user may give
 
@@ -218,3 +219,35 @@ def rating_case(pair: GearPair, specs: Mapping[str, GearSpec], service: Service,
                       long_life_bending=service.long_life_bending, limited_pitting=service.limited_pitting,
                       **dict(load.given))
     return RatedPair(case, p.name, w.name, (roots[0], roots[1]), tuple(warnings))
+
+
+@dataclass(frozen=True)
+class NominalContact:
+    """ISO 6336-2's nominal contact stress of a gearfe pair under one torque, no load factors [MPa]."""
+
+    sigma_h0: float  # at the pitch point, with Z_ε (load sharing allowance)
+    at_inner_point_pinion: float  # σ_H0 Z_B / Z_ε: the pinion's inner point of single contact, one pair, whole load
+    at_inner_point_wheel: float  # σ_H0 Z_D / Z_ε
+    z_h: float
+    z_e: float
+    z_eps: float
+    z_beta: float
+    z_b: float
+    z_d: float
+    pinion: str
+    wheel: str
+
+
+def nominal_contact(pair: GearPair, torque: float, elastic: tuple[float, float], torque_of: str = "driven") -> NominalContact:
+    """σ_H0 (H1) of the pair under ``torque`` [N mm] on the gear ``torque_of``, materials of modulus E [MPa] and
+    Poisson ratio ν (``elastic``), with Z_B, Z_D and Z_ε to carry it to the inner points of single contact."""
+    from tca.rating.contact import contact_factors, nominal_contact_stress
+
+    p, w = pinion_first(pair)
+    geom = pair_geometry(pair_data(pair))
+    ref = pair.gear1 if torque_of == "driver" else pair.gear2
+    f_t = 2.0 * abs(torque) * p.teeth / ref.teeth / geom.reference_diameter[0]
+    cf = contact_factors(geom, (elastic[0], elastic[0]), (elastic[1], elastic[1]))
+    s = nominal_contact_stress(geom, f_t, cf)
+    return NominalContact(s, s * cf.z_b / cf.z_eps, s * cf.z_d / cf.z_eps, cf.z_h, cf.z_e, cf.z_eps, cf.z_beta, cf.z_b,
+                          cf.z_d, p.name, w.name)

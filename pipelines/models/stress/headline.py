@@ -245,6 +245,11 @@ def contact_peaks(scene: Scene, mesh: HexMesh, model, r: FEResult, rows: list[di
                 x = mesh.points[act[k]]
                 own = ds[k] <= dm[k]
                 part = sp if own else mp
+                q = mesh.face_nodes(cp.slave)
+                f = mesh.points[q[np.any(q == act[k], axis=1)]]
+                nrm = np.cross(f[:, 2] - f[:, 0], f[:, 3] - f[:, 1]).sum(axis=0)
+                rec["edge_normal"] = (nrm / np.linalg.norm(nrm)).tolist()  # out of the slave flank
+                rec["slave_body"] = sp.body
                 rec.update(edge_peak_mpa=float(p[act[k]]), edge_point_mm=x.tolist(),
                            edge_kind=_edge_kind(part, x if own else mesh.points[bm[im[k]]], reach),
                            edge_of=part.gear.name)
