@@ -37,7 +37,7 @@ from pipelines.calculix.crosscheck import write_inp_job
 
 __all__ = ["add_args", "handle", "read_with_overrides", "SHOWN"]
 
-SHOWN = ("max_von_mises_mpa", "max_contact_pressure_mpa", "contact_force_n", "max_fillet_stress_mpa",
+SHOWN = ("max_von_mises_mpa", "contact_peak_mpa", "max_contact_pressure_mpa", "contact_force_n", "max_fillet_stress_mpa",
          "torque_balance_error", "edge_contact", "fe_edge_contact", "dofs", "total_s")
 
 

@@ -21,9 +21,10 @@ h1 { font-size: 1.5em; border-bottom: 2px solid #334; padding-bottom: .2em; }
 h2 { font-size: 1.2em; margin-top: 1.6em; border-bottom: 1px solid #aab; }
 h3 { font-size: 1.0em; margin: 1em 0 .4em; }
 table { border-collapse: collapse; margin: .5em 0 1em; font-size: .85em; max-width: 100%; }
-th, td { border: 1px solid #bbc; padding: .2em .45em; text-align: right; overflow-wrap: anywhere; }
-th { background: #e8eaf2; font-weight: 600; } td:first-child, th:first-child { text-align: left; }
-td.text { text-align: left; max-width: 40em; }
+th, td { border: 1px solid #bbc; padding: .2em .45em; text-align: right; }
+th { background: #e8eaf2; font-weight: 600; text-align: center; overflow-wrap: break-word; }
+td { white-space: nowrap; } td:first-child, th:first-child { text-align: left; }
+td.text { text-align: left; max-width: 40em; white-space: normal; }
 figure { margin: .6em 0 1.2em; } figure img { max-width: 100%; border: 1px solid #ddd; }
 figcaption { font-size: .85em; color: #444; margin-top: .2em; }
 .grid { display: grid; gap: 1.5em; } .grid > div { min-width: 0; }

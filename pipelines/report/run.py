@@ -44,7 +44,7 @@ from pipelines.models.stress.case import StressCase
 
 from pipelines.models.stress.run import StressRun, run_stress
 
-from pipelines.report.figures import design_pictures, parts_of
+from pipelines.report.figures import design_pictures, parts_of, share_text
 
 __all__ = ["STAGES", "run_pipeline", "add_images", "zone_images", "zone_limits", "write_report", "zone_name"]
 
@@ -126,13 +126,8 @@ def zone_images(summary: dict, mesh, result, out: Path, clim: dict | None = None
     names, peaks = [], {}
     for itf, member, m, sub, r in zones:
         view = _view(m)
-        share = summary["load_share"][itf]["members"][member]
-        teeth = {n: t for n, t in summary["interfaces"][itf].get("teeth", {}).items() if n.startswith(f"{member}/")}
-        loaded = next((n for n, t in teeth.items() if t.get("offset") == 0), None)
-        pair = (f"; loaded pair {loaded.split('/')[-1]} {summary['load_share'][itf]['teeth'][loaded]:.3f}"
-                if loaded is not None and len(teeth) > 1 else "")
         edge = "edge contact" if m.get("edge_contact") else "no edge contact"
-        cap = f"{itf}, member {member} ({m['slave_body']} flank): member share {share:.3f}{pair}, {edge}"
+        cap = f"{itf}, member {member} ({m['slave_body']} flank): {share_text(summary, itf, member)}, {edge}"
         stem = zone_name(itf, member)
         vm = peaks[(itf, member)] = float(np.nanmax(sub.point_data["von_mises"], initial=0.0))
         edges = sub.n_cells <= EDGES_UP_TO
@@ -154,51 +149,56 @@ def zone_images(summary: dict, mesh, result, out: Path, clim: dict | None = None
     return names, peaks
 
 
-def peak_images(summary: dict, mesh, result, out: Path, size=(1200, 900)) -> list[tuple[str, str]]:
-    """A picture of every flagged peak: (file, caption). Edge and corner contact peaks: the contact pressure on the
-    slave body around the point, seen along the flank's normal (the mate hidden); contact-induced fillet peaks: the
-    largest principal stress on that gear around the point, seen along its axis."""
-    from pipelines.render.images import Scalars, Zone, render_contact_zone, to_pyvista
+def peak_images(run: StressRun, out: Path) -> list[tuple[str, str]]:
+    """A picture of every flagged peak: (file, caption), :func:`pipelines.render.peaks.plot_peak_map`.
 
-    out_files = []
+    Edge and corner contact peaks: the contact pressure on the slave flank they were recovered on; contact-induced
+    fillet peaks: the largest principal stress on the fillet and the flank above it. Both unrolled onto (axial
+    position, radius) in their gear's frame, the peak circled.
+    """
+    from pipelines.models.stress.headline import gear_coords, gear_frame_part
+    from pipelines.render.peaks import plot_peak_map
+
+    summary, mesh, result, scene = run.summary, run.mesh, run.result, run.scene
     p = np.nan_to_num(result.contact_pressure)
-    grid = to_pyvista(mesh, {"contact_pressure": p, "max_principal": result.principal[:, 0]})
-    centres = mesh.points[mesh.cells].mean(axis=1)
+    files = []
 
-    def sub(body: str, at, radius):
-        cells = np.flatnonzero((mesh.cell_body == mesh.bodies.index(body))
-                               & (np.linalg.norm(centres - np.asarray(at), axis=1) < 3 * radius))
-        return grid.extract_cells(cells)
+    def unrolled(part, nodes, at):
+        """(z, r) of the nodes within 0.4 m_n of the peak's radius (the whole face width), the peak's (z, r)."""
+        g = gear_coords(part, mesh.points[nodes])
+        q = gear_coords(part, np.asarray([at], float))[0]
+        r, rq = np.hypot(g[:, 0], g[:, 1]), float(np.hypot(q[0], q[1]))
+        keep = np.abs(r - rq) <= 0.4 * part.gear.module
+        return nodes[keep], g[keep, 2], r[keep], (float(q[2]), rq)
 
     for k, e in enumerate(summary.get("edge_peaks", [])):
-        at, body = e["edge_point_mm"], e.get("slave_body")
-        if body is None:
+        cp = next((c for c in run_contacts(run) if c[0] == e["pair"]), None)
+        if cp is None:
             continue
-        radius = 1.5
-        g = sub(body, at, radius)
-        vals = g.point_data["contact_pressure"]
+        part = gear_frame_part(scene, cp[1])
+        nodes = mesh.face_set_points(cp[1])
+        nodes, z, r, at = unrolled(part, nodes, e["edge_point_mm"])
         f = f"peak_edge_{k}.png"
-        cap = (f"{e['edge_kind']} of the {e['edge_of']}, pair {e['pair'].split('/')[-1]}: {e['edge_peak_mpa']:.0f} MPa "
-               f"(smooth peak of the pair {e['smooth_peak_mpa']:.0f} MPa)")
-        render_contact_zone(g, out / f, Zone(tuple(at), tuple(e["edge_normal"]), radius),
-                            Scalars("contact_pressure", "contact pressure [MPa]", (0.0, float(vals.max(initial=1.0)) or 1.0)),
-                            size=size, caption=cap, show_edges=g.n_cells <= EDGES_UP_TO)
-        out_files.append((f, cap + f"; at ({', '.join(f'{x:.2f}' for x in at)}) mm"))
+        cap = (f"{e['edge_kind']} of the {e['edge_of']}, pair {e['pair'].split('/')[-1]}: {e['edge_peak_mpa']:.0f} MPa, "
+               f"the pair's smooth peak {e['smooth_peak_mpa']:.0f} MPa; contact pressure on the {part.gear.name} flank")
+        plot_peak_map(z, r, p[nodes], at, out / f, cap, "contact pressure [MPa]")
+        files.append((f, cap + f"; at ({', '.join(f'{x:.2f}' for x in e['edge_point_mm'])}) mm in the fixed frame"))
     for k, fp in enumerate(summary.get("fillet_peaks", [])):
-        body = fp["set"].split("/")[0]
-        at = fp["point_mm"]
-        radius = 1.5
-        g = sub(body, at, radius)
-        ref = mesh.reference_points.get(body)
-        axis = tuple(ref.axis) if ref is not None else (0.0, 0.0, 1.0)
+        part = gear_frame_part(scene, fp["set"])
+        sets = [fp["set"], fp["set"].replace("fillet_", "flank_")]
+        nodes = np.unique(np.concatenate([mesh.face_set_points(x) for x in sets if x in mesh.face_sets]))
+        nodes, z, r, at = unrolled(part, nodes, fp["point_mm"])
         f = f"peak_fillet_{k}.png"
-        cap = (f"{fp['cause']} on {fp['set']}: {fp['value_mpa']:.0f} MPa (the fillet away from it: "
-               f"{fp['clear_max_mpa']:.0f} MPa)")
-        render_contact_zone(g, out / f, Zone(tuple(at), axis, radius),
-                            Scalars("max_principal", "max principal [MPa]", None), size=size, caption=cap,
-                            show_edges=g.n_cells <= EDGES_UP_TO)
-        out_files.append((f, cap + f"; at ({', '.join(f'{x:.2f}' for x in at)}) mm"))
-    return out_files
+        cap = (f"{fp['cause']} on {fp['set']}: {fp['value_mpa']:.0f} MPa, the fillet away from it "
+               f"{fp['clear_max_mpa']:.0f} MPa; largest principal stress on the fillet and its flank")
+        plot_peak_map(z, r, result.principal[nodes, 0], at, out / f, cap, "largest principal stress [MPa]")
+        files.append((f, cap + f"; at ({', '.join(f'{x:.2f}' for x in fp['point_mm'])}) mm in the fixed frame"))
+    return files
+
+
+def run_contacts(run: StressRun) -> list[tuple[str, str, str]]:
+    """(pair name, slave face set, master face set) of the run's contact pairs."""
+    return [(c["pair"], c["slave_set"], c["master_set"]) for c in run.summary.get("contact_peaks", []) if "slave_set" in c]
 
 
 def _fmt(v, nd=4) -> str:
@@ -287,7 +287,7 @@ def add_images(run: StressRun, out: Path, clim: dict | None = None, progress=Non
     summary = run.summary
     pics = design_pictures(run, Path(out), top=top, show_edges=show_edges)
     names, peaks = zone_images(summary, run.mesh, run.result, Path(out), clim, overview_range=pics.colour)
-    flagged = peak_images(summary, run.mesh, run.result, Path(out))
+    flagged = peak_images(run, Path(out))
     names += [f for f, _ in flagged]
     for f in pics.files.values():
         names += list(f.values())

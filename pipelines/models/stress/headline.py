@@ -44,7 +44,7 @@ from fem.result import FEResult
 from pipelines.models.stress.scene import Scene
 
 __all__ = ["CONTACT_REACH", "EDGE_REACH", "CRITICAL_ANGLE_DEG", "root_stress", "contact_peaks", "fillet_peaks",
-           "critical_section"]
+           "critical_section", "gear_coords", "gear_frame_part"]
 
 CONTACT_REACH = 0.25  # fillet nodes within this many normal modules of a contact node are in its local field
 EDGE_REACH = 0.1  # contact nodes within this many normal modules of a flank boundary belong to the edge
@@ -55,7 +55,12 @@ def _side(s: int) -> str:
     return "pos" if s > 0 else "neg"
 
 
-def _gear_coords(part, x: np.ndarray) -> np.ndarray:
+def gear_frame_part(scene: Scene, face_set: str):
+    """The scene's part (gear member) a face set of the mesh belongs to."""
+    return next(p for p in scene.parts if face_set.startswith(p.set("")))
+
+
+def gear_coords(part, x: np.ndarray) -> np.ndarray:
     """Points of the fixed frame in the part's gear frame."""
     return (np.asarray(x, float) - np.asarray(part.t, float)) @ np.asarray(part.R, float)
 
@@ -79,7 +84,7 @@ def critical_section(part, mesh: HexMesh, r: FEResult, tooth: int, side: int) ->
     c_nodes = _nodes(mesh, [part.set(f"tooth{tooth}/fillet_{_side(-side)}"), part.set(f"tooth{tooth}/root_{_side(-side)}")])
     if len(t_nodes) < 3 or len(c_nodes) < 3:
         return None
-    xt, xc = _gear_coords(part, mesh.points[t_nodes]), _gear_coords(part, mesh.points[c_nodes])
+    xt, xc = gear_coords(part, mesh.points[t_nodes]), gear_coords(part, mesh.points[c_nodes])
     th0 = 2 * math.pi * tooth / part.gear.teeth
     polar = lambda x: (np.hypot(x[:, 0], x[:, 1]), (np.arctan2(x[:, 1], x[:, 0]) - th0 + math.pi) % (2 * math.pi) - math.pi)  # noqa: E731
     rt, at = polar(xt)
@@ -194,7 +199,7 @@ def fillet_peaks(scene: Scene, mesh: HexMesh, r: FEResult, fillet_sets: tuple) -
         v = float(r.principal[i, 0])
         if v <= cm:
             continue
-        zeta = float(_gear_coords(part, mesh.points[i:i + 1])[0, 2])
+        zeta = float(gear_coords(part, mesh.points[i:i + 1])[0, 2])
         end = abs(zeta) >= 0.5 * part.gear.face_width - CONTACT_REACH * mn
         peaks.append({"set": fs, "gear": part.gear.name, "value_mpa": v, "point_mm": mesh.points[i].tolist(),
                       "axial_mm": zeta, "clear_max_mpa": cm,
@@ -211,7 +216,7 @@ def _boundary(mesh: HexMesh, face_set: str) -> np.ndarray:
 
 
 def _edge_kind(part, x: np.ndarray, reach: float) -> str:
-    g = _gear_coords(part, x[None, :])[0]
+    g = gear_coords(part, x[None, :])[0]
     rad, z = math.hypot(g[0], g[1]), g[2]
     tip = abs(rad - part.gear.r_tip) <= reach + 0.02 * part.gear.module
     end = abs(z) >= 0.5 * part.gear.face_width - reach
@@ -231,7 +236,8 @@ def contact_peaks(scene: Scene, mesh: HexMesh, model, r: FEResult, rows: list[di
         reach = EDGE_REACH * sp.gear.module
         nodes = mesh.face_set_points(cp.slave)
         act = nodes[p[nodes] > 0]
-        rec = {"pair": row["name"], "force_n": row["force_n"], "smooth_peak_mpa": 0.0, "edge_peak_mpa": 0.0,
+        rec = {"pair": row["name"], "slave_set": cp.slave, "master_set": cp.master, "force_n": row["force_n"],
+               "smooth_peak_mpa": 0.0, "edge_peak_mpa": 0.0,
                "edge_point_mm": None, "edge_kind": None, "edge_of": None, "edge_flagged": False}
         if len(act):
             bs, bm = _boundary(mesh, cp.slave), _boundary(mesh, cp.master)
