@@ -28,6 +28,7 @@ Keys (every key checked, unknown keys rejected; ranges are ISO 6336's or this li
     # mean_stress_factor = 0.7       # Y_M: 1 one-way bending (default), 0.7 an idler or planet
     # yield_strength_mpa = 600.0     # σ_S / σ_0.2 (Y_δrelT of St, V, GGG, GTS)
     # tensile_strength_mpa = 200.0   # σ_B (GG)
+    # brinell_hardness = 290.0       # HB of a through-hardened gear whose hardness is given in HV10 (Z_W)
 
 The torque is the case's, as its record gives it (``torque_nm`` of a stress case: on the driven gear); speed
 and torque are converted to the pinion's by the teeth (:mod:`tca.rating.from_gears`). Bad input: one line
@@ -93,8 +94,10 @@ def _material(t: Table) -> Material:
     quality = t.get("quality", str, choices=("ML", "MQ", "ME"))
     hardness = t.get("hardness", float, lo=0.0, lo_open=True)
     extra = {}
-    for key, name in (("yield_strength_mpa", "yield_strength"), ("tensile_strength_mpa", "tensile_strength")):
-        v = t.get(key, float, None, lo=100.0, hi=3000.0)
+    for key, name, lo, hi in (("yield_strength_mpa", "yield_strength", 100.0, 3000.0),
+                              ("tensile_strength_mpa", "tensile_strength", 100.0, 3000.0),
+                              ("brinell_hardness", "brinell_hardness", 50.0, 800.0)):
+        v = t.get(key, float, None, lo=lo, hi=hi)
         if v is not None:
             extra[name] = v
     try:

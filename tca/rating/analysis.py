@@ -25,7 +25,8 @@ and :math:`L_q(t_j)` the length of its contact line on both flanks,
 the largest load per unit length of any pair through the cycle over the largest of the ideal (length-proportional)
 sharing. For a spur pair the governing load is the single-contact load of both (A2 = 1 for error-free gears,
 as ISO's K_Hα = 1 for accurate gears); pitch errors or relief that load one pair beyond its share raise it.
-Like ISO's, (A2) is limited below by 1; the unlimited value is reported.
+(A2) is never below 1: at every position the shares sum to 1, so some pair carries at least :math:`1/\sum_q L_q` per
+unit length (ISO limits its K_Hα below by 1 as well).
 
 Mesh load factor K_γ (a planetary train's most loaded planet over the mean) is passed in as a number from the
 train's analysis: :class:`AnalysisFactors`.
