@@ -22,7 +22,7 @@ h2 { font-size: 1.2em; margin-top: 1.6em; border-bottom: 1px solid #aab; }
 h3 { font-size: 1.0em; margin: 1em 0 .4em; }
 table { border-collapse: collapse; margin: .5em 0 1em; font-size: .85em; max-width: 100%; }
 th, td { border: 1px solid #bbc; padding: .2em .45em; text-align: right; }
-th { background: #e8eaf2; font-weight: 600; text-align: center; overflow-wrap: break-word; }
+th { background: #e8eaf2; font-weight: 600; text-align: center; overflow-wrap: anywhere; }
 td { white-space: nowrap; } td:first-child, th:first-child { text-align: left; }
 td.text { text-align: left; max-width: 40em; white-space: normal; }
 figure { margin: .6em 0 1.2em; } figure img { max-width: 100%; border: 1px solid #ddd; }

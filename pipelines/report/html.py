@@ -196,7 +196,9 @@ def compare_html(summaries: dict, folders: dict, rows: list[dict], finding: dict
     labels = list(summaries)
     head = ("Finding (Part 1, Numerical Example 1.3: the twin drives)" if "reproduced" in finding
             else "What the two cases share")
-    blocks = [table(rows), section(head, table([{"check": k, "value": v} for k, v in finding.items()]))]
+    keys = list(dict.fromkeys(k for r in rows for k in r))
+    blocks = [table(rows, headers={k: k.replace("_", " ") for k in keys}),
+              section(head, table([{"check": k, "value": v} for k, v in finding.items()]))]
     for p, cap in images or []:
         blocks.append(image(p, cap))
     for k in labels:  # one design after the other: their tables are too wide to stand side by side at 1400 px
