@@ -128,6 +128,21 @@ def _pairs(rows: list[dict]) -> list[str]:
     return names
 
 
+def _extents(ps: list[dict]) -> np.ndarray:
+    """Half the axial length each slice covers [mm]: half the median axial spacing of its contact line's slices."""
+    z = np.array([p["z_mm"] for p in ps], float)
+    key = [(p["phi1_deg"], p["pair"]) for p in ps]
+    groups: dict = {}
+    for i, k in enumerate(key):
+        groups.setdefault(k, []).append(i)
+    steps = {k: float(np.median(np.diff(np.sort(z[idx])))) for k, idx in groups.items() if len(idx) > 1}
+    typical = float(np.median(list(steps.values()))) if steps else 1.0
+    out = np.empty(len(ps))
+    for k, idx in groups.items():
+        out[idx] = 0.5 * (steps.get(k) or typical)
+    return out
+
+
 def ltca_factors(rows: list[dict], prows: list[dict], torque_nm: float, face_width: float,
                  bins: int) -> tuple[AnalysisFactors, dict]:
     """K_Hβ (A1) and K_Hα (A2) of :mod:`tca.rating.analysis` from ``gearfe ltca``'s rows at one torque [N m].
@@ -138,7 +153,7 @@ def ltca_factors(rows: list[dict], prows: list[dict], torque_nm: float, face_wid
     rs = [r for r in rows if abs(r["torque_nm"] - torque_nm) <= 1e-9 * torque_nm]
     ps = [p for p in prows if abs(p["torque_nm"] - torque_nm) <= 1e-9 * torque_nm]
     fl = face_load_from_slices(np.array([p["phi1_deg"] for p in ps]), np.array([p["z_mm"] for p in ps]),
-                               np.array([p["force_n"] for p in ps]), face_width, bins)
+                               np.array([p["force_n"] for p in ps]), face_width, bins, _extents(ps))
     tr = transverse_from_shares(_table(rs, "share"), _table(rs, "length_mm"))
     note_b = (f"loaded TCA: cycle-mean load per unit face width, max/mean over {bins} face bins, {fl.positions} "
               f"positions at {torque_nm:g} N m (A1); largest instantaneous {fl.instantaneous:.3f}")
@@ -196,6 +211,4 @@ def ltca_rating(case, summary: dict, folder) -> dict | None:
     bins = max(2, int(round(b / summary["flank_grid_mm"]["axial"])))
     f, det = ltca_factors(_read_csv(folder / "results.csv"), _read_csv(folder / "pressure.csv"), case.torque * 1e-3,
                           b, bins)
-    if case.rating.given.get("k_gamma") is not None:
-        f = AnalysisFactors(f.k_h_beta, f.k_h_alpha, case.rating.given["k_gamma"])
     return rating_record(meshes, {"pair": f}, {"pair": det})

@@ -86,8 +86,12 @@ class AnalysisFactors:
 
 
 def face_load_from_slices(position: np.ndarray, z: np.ndarray, force: np.ndarray, face_width: float,
-                          bins: int) -> FaceLoadAnalysis:
-    """(A1) from slice records: ``position`` index j, axial position ``z`` [mm] (face centre 0), load [N]."""
+                          bins: int, extent: np.ndarray | None = None) -> FaceLoadAnalysis:
+    """(A1) from slice records: ``position`` index j, axial position ``z`` [mm] (face centre 0), load [N].
+
+    ``extent``: half the axial length [mm] each slice covers; its load is spread uniformly over it and shared by the
+    bins it overlaps (without it, by its centre: then bins narrower than the slices alias).
+    """
     position, z, force = (np.asarray(a, float).ravel() for a in (position, z, force))
     if not (len(position) == len(z) == len(force)) or len(z) == 0:
         raise RatingInputError("slices", len(z), "equal, non-empty arrays of position, z and force")
@@ -95,10 +99,22 @@ def face_load_from_slices(position: np.ndarray, z: np.ndarray, force: np.ndarray
     if int(bins) != bins or bins < 2:
         raise RatingInputError("bins", bins, "an integer >= 2")
     h = face_width / bins
-    i = np.clip(np.floor((z + 0.5 * face_width) / h).astype(int), 0, bins - 1)
     pos, j = np.unique(position, return_inverse=True)
     w = np.zeros((len(pos), bins))
-    np.add.at(w, (j, i), force / h)
+    if extent is None:
+        i = np.clip(np.floor((z + 0.5 * face_width) / h).astype(int), 0, bins - 1)
+        np.add.at(w, (j, i), force / h)
+    else:
+        e = np.maximum(np.asarray(extent, float).ravel(), 1e-9)
+        if len(e) != len(z):
+            raise RatingInputError("extent", len(e), f"one half-length per slice ({len(z)})")
+        lo = np.clip(z - e, -0.5 * face_width, 0.5 * face_width)[:, None]
+        hi = np.clip(z + e, -0.5 * face_width, 0.5 * face_width)[:, None]
+        edges = -0.5 * face_width + h * np.arange(bins + 1)
+        part = np.clip(np.minimum(hi, edges[1:]) - np.maximum(lo, edges[:-1]), 0.0, None)  # (S, N) overlaps [mm]
+        cover = part.sum(axis=1, keepdims=True)
+        share = np.divide(part, cover, out=np.zeros_like(part), where=cover > 0)
+        np.add.at(w, j, share * (force / h)[:, None])
     mean_t = w.mean(axis=1)
     ok = mean_t > 0
     if not ok.any():

@@ -29,6 +29,23 @@ def test_linear_line_load_gives_its_max_over_mean():
     assert np.argmax(fl.line_load) == n - 1
 
 
+def test_slices_longer_than_the_bins_are_spread_over_them():
+    """Slices 1.125 mm long on a 14 mm face cut into 14 bins: by their centres some bins get none (aliasing), spread
+    over their lengths every bin gets the uniform line load (K_Hβ = 1)."""
+    n = int(14.0 / 1.125) + 1
+    z = -7.0 + 1.125 * (np.arange(n) + 0.5)
+    z = z[z < 7.0]
+    f = np.full(len(z), 100.0 * 1.125)
+    f[-1] = 100.0 * (7.0 - (z[-1] - 0.5625))  # the last slice is cut by the face end
+    e = np.full(len(z), 0.5625)
+    e[-1] = 0.5 * (7.0 - (z[-1] - 0.5625))
+    z[-1] = 7.0 - e[-1]
+    aliased = face_load_from_slices(np.zeros(len(z)), z, f, 14.0, 14)
+    spread = face_load_from_slices(np.zeros(len(z)), z, f, 14.0, 14, e)
+    assert aliased.k_h_beta > 1.1
+    assert spread.k_h_beta == pytest.approx(1.0, abs=1e-9)
+
+
 def test_moving_lines_average_over_the_cycle():
     """Helical-like: at each position the load sits on part of the face (instantaneous ratio 2), but over the cycle
     every section is loaded equally: K_Hβ = 1, the instantaneous value reported beside it."""
