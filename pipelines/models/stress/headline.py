@@ -5,7 +5,8 @@ and corner peaks.
 Root stress. For every tooth carrying load (its tooth pair's FE force > 0) the tension fillet is the one on the
 loaded flank's side (``tooth<j>/fillet_pos`` for a loaded +y flank). Its nodes (fillet and root sets) are taken
 into the gear's frame (:class:`pipelines.models.stress.scene.Part`: :math:`x = R^T(x_f - t)`) and grouped by axial
-level :math:`\zeta`. At each level the tooth centre line is the bisector of the two fillets (the mean of their polar
+level :math:`\zeta` (the flank's nodes too: on an internal gear the flank's tangent can pass 30° above the
+fillet). At each level the tooth centre line is the bisector of the two fillets (the mean of their polar
 angles at a common radius); in the tooth frame (:math:`\xi` along the centre line, :math:`\eta` across) the fillet
 curve's tangent makes the angle
 
@@ -80,7 +81,8 @@ def _levels(zeta: np.ndarray, tol: float) -> list[np.ndarray]:
 def critical_section(part, mesh: HexMesh, r: FEResult, tooth: int, side: int) -> dict | None:
     """The 30° tangent section of one tooth's tension fillet (module docstring, K1): per level and its extremes."""
     mn = part.gear.module
-    t_nodes = _nodes(mesh, [part.set(f"tooth{tooth}/fillet_{_side(side)}"), part.set(f"tooth{tooth}/root_{_side(side)}")])
+    # the flank too: on an internal gear the flank's tangent may pass 30° before the fillet starts
+    t_nodes = _nodes(mesh, [part.set(f"tooth{tooth}/{k}_{_side(side)}") for k in ("fillet", "root", "flank")])
     c_nodes = _nodes(mesh, [part.set(f"tooth{tooth}/fillet_{_side(-side)}"), part.set(f"tooth{tooth}/root_{_side(-side)}")])
     if len(t_nodes) < 3 or len(c_nodes) < 3:
         return None
@@ -115,7 +117,7 @@ def critical_section(part, mesh: HexMesh, r: FEResult, tooth: int, side: int) ->
         cross = np.flatnonzero(np.diff(np.sign(tau - CRITICAL_ANGLE_DEG)) != 0)
         if len(cross) == 0:
             continue
-        k = int(cross[np.argmin(np.abs(s_mid[cross] - s_mid[cross].mean()))]) if len(cross) > 1 else int(cross[0])
+        k = int(cross[-1] if part.gear.internal else cross[0])  # the crossing nearest the root
         w = (CRITICAL_ANGLE_DEG - tau[k]) / (tau[k + 1] - tau[k])
         s30 = s_mid[k] + w * (s_mid[k + 1] - s_mid[k])
         val = float(np.interp(s30, s, sig[g][o_t]))

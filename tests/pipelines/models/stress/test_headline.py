@@ -86,6 +86,22 @@ def test_entering_pair_tip_edge_is_flagged_apart_from_the_loaded_pair(tmp_path):
     assert s["max_fillet_stress_mpa"] <= s["max_fillet_stress_raw_mpa"]
 
 
+def test_internal_ring_critical_section_is_found(tmp_path):
+    """The ring of stress_internal_pair.toml (24/72), one tooth per gear at the pinion's LPSTC, refine 0.5: its 30°
+    tangent lies on the flank just above the generated fillet (the flank of an internal tooth is inclined more than
+    30° near its root), between the tip and the root circles. ISO's substitute rack is conservative for the ring:
+    measured 64.4 MPa at the section, fillet maximum 88.0, σ_F0 99.4 MPa."""
+    c = read_stress_case(load_case(CASES_DIR / "stress_internal_pair.toml"))
+    c = replace(c, position="lpstc", mesh=replace(c.mesh, teeth=1, refine=0.5))
+    s = run_stress(c, tmp_path).summary
+    ring = c.pair.gear2
+    rs = s["root_stress"][ring.name]
+    assert rs["critical_section_mpa"] is not None
+    r = math.hypot(rs["critical_section_point_mm"][0] + c.pair.E, rs["critical_section_point_mm"][1])  # ring centre (-E, 0)
+    assert ring.r_tip < r < ring.r_root
+    assert rs["critical_section_mpa"] < rs["fillet_max_mpa"] < s["iso6336_sigma_f0_mpa"][ring.name]
+
+
 @pytest.mark.bench
 def test_helical_loaded_tooth_is_stable_and_the_tip_bearing_peak_apart(tmp_path, monkeypatch):
     """Issue 25's crowned helical pair at the pitch point, refine 0.5 and 1 (5.1 and 7.8 GB peak; the estimates,
