@@ -251,6 +251,22 @@ def write_report(summary: dict, path: Path) -> Path:
         lines += ["", "ISO 6336-3 method B nominal root stress σ_F0 (whole load on one tooth at its HPSTC, no load "
                   "factors): " + ", ".join(f"{g} {_fmt(v)} MPa" for g, v in iso.items())
                   + f"; FE max fillet stress {_fmt(s.get('max_fillet_stress_mpa'))} MPa ({s.get('max_fillet_set', '')})."]
+    for g, r in s.get("root_stress", {}).items():
+        lines.append(f"- {g}: loaded tooth {r['tooth']} (share {_fmt(r['load_share'])}) at ISO's 30° section "
+                     f"{_fmt(r['critical_section_mpa'])} MPa (mid-face {_fmt(r['critical_section_mid_face_mpa'])}), fillet "
+                     f"maximum away from contact peaks {_fmt(r['fillet_max_mpa'])} MPa")
+    lines.append(f"- smooth contact peak of the loaded pairs {_fmt(s.get('contact_peak_mpa'))} MPa (largest pressure with "
+                 f"edge and corner peaks {_fmt(s.get('max_contact_pressure_mpa'))} MPa)")
+    for e in s.get("edge_peaks", []):
+        lines.append(f"- flagged: {e['edge_kind']} of the {e['edge_of']}, pair {e['pair']}: {_fmt(e['edge_peak_mpa'])} MPa at "
+                     + ", ".join(f"{x:.2f}" for x in e["edge_point_mm"]) + " mm")
+    for p in s.get("fillet_peaks", []):
+        lines.append(f"- flagged: {p['cause']} on {p['set']}: {_fmt(p['value_mpa'])} MPa at "
+                     + ", ".join(f"{x:.2f}" for x in p["point_mm"]) + " mm")
+    if s.get("rating"):
+        from pipelines.report.rating import rating_markdown
+
+        lines += ["", rating_markdown(s["rating"]).replace("# ISO 6336 rating", "## ISO 6336 rating", 1).rstrip()]
     lines += ["", "## Stage times [s]", "", "| stage | wall [s] |", "|---|---|"]
     for k, v in s["stages"].items():
         lines.append(f"| {k} | {v:.2f} |")
