@@ -170,8 +170,11 @@ def test_compare_report_html_side_by_side(comparison, tmp_path):
 
     text = (comparison / "report.html").read_text()
     assert self_contained(text) == []
-    # compare_zones + compare_pressure, 4 meshes x 5 pictures x 2 designs, 2 overviews
-    assert embedded_images(text) == 2 + 4 * 5 * 2 + 2
+    # compare_zones + compare_pressure, 4 meshes x 5 pictures x 2 designs, 2 overviews, and each design's pictures
+    # of its flagged peaks (issue 25)
+    peaks = sum(len(json.loads((comparison / d / "summary.json").read_text())["pictures"]["peaks"])
+                for d in ("new", "conventional"))
+    assert embedded_images(text) == 2 + 4 * 5 * 2 + 2 + peaks
     assert text.count('class="grid"') >= 4 * 5
     png = screenshot(comparison / "report.html", tmp_path / "cmp.png", tmp_path)
     assert not image_is_blank(png)
