@@ -134,3 +134,17 @@ def test_a_planetary_train_rates_both_meshes(tmp_path):
             assert g["factors"]["K_gamma"] == {"value": 1.1, "source": "input", "note": g["factors"]["K_gamma"]["note"]}
     # per member and planet: the ring's torque / (2 n) on the ring
     assert r["meshes"]["planet-ring"]["pair"]["pinion_torque_nm"] == pytest.approx(2000.0 / 10 * 34 / 109, rel=1e-9)
+
+
+def test_a_twin_stress_case_rates_member_meshes(tmp_path):
+    """Part 1's twin drive (stress_part1_new.toml): the ring's torque of the case, per member and planet."""
+    gears = {"sun": dict(GEAR), "planet": {**GEAR, "mean_stress_factor": 0.7},
+             "ring": {"material": "V (alloy)", "quality": "MQ", "hardness": 300.0, "yield_strength_mpa": 700.0,
+                      "brinell_hardness": 290.0}}
+    d = shipped_data("stress_part1_new", {"rating": {**RATING, "gears": gears}})
+    assert main(["rate", str(write_case(tmp_path, "twin", d)), "--out", str(tmp_path / "o")]) == 0
+    r = json.loads((tmp_path / "o" / "summary.json").read_text())["rating"]
+    torque = d["torque_nm"]
+    n = d["planets"]
+    assert r["meshes"]["planet-ring"]["pair"]["pinion_torque_nm"] == pytest.approx(torque / (2 * n) * 34 / 109, rel=1e-9)
+    assert r["gears"]["planet"]["factors"]["Y_M"]["value"] == 0.7
