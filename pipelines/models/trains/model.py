@@ -192,6 +192,13 @@ class TrainModel:
         self._rows[(site, frac)] = r
         return r
 
+    def with_options(self, opts: TrainOptions) -> "TrainModel":
+        """The same TCAs, flank compliances and slices under other supports (sun axis, sun support, pins): the
+        rigid DOFs are rebuilt, the slices reused (they do not depend on the supports)."""
+        floating = opts.sun_axis == "floating" or opts.sun_support is not None
+        dof = DofMap.build(self.layout.planets, floating, opts.pin_stiffness is not None)
+        return replace(self, opts=opts, dof=dof, _slices=self._slices, _rows={})
+
     def _flank(self, gear, side):
         return self.flanks[(gear.name, side)]
 

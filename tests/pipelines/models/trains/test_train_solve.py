@@ -1,0 +1,123 @@
+"""The coupled train solve against closed forms (docs/trains.md): equal shares, a pin error, a floating sun, the pair.
+
+A small spur train in phase (N1 = 24, N2 = 21, N3 = 66, three planets: N1/3 and N3/3 integers, so every planet
+meshes at the same phase), m = 2 mm, b = 10 mm, coarse flank grids (the closed forms hold for any grid)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from fem.material import STEEL
+from tca.geometry.gear import Gear
+from tca.isostatic.linear import linear_response
+from tca.isostatic.train import IsostaticTrain, PlanetPlacement
+
+from pipelines.models.ltca.contact import SliceLaw, solve_contact
+from pipelines.models.trains.geometry import TrainErrors, single_layout
+from pipelines.models.trains.model import build_train_model
+from pipelines.models.trains.options import TrainOptions
+from pipelines.models.trains.run import solve_run
+from pipelines.models.trains.solver import MeshBlock, RigidSystem, solve_train
+
+T = 100e3  # N mm on the sun
+ALPHA = math.radians(20.0)
+
+
+def gears():
+    d = math.radians
+    return (Gear("sun", 24, 2.0, d(20), 10), Gear("planet", 21, 2.0, d(20), 10),
+            Gear("ring", 66, 2.0, d(20), 10, internal=True))
+
+
+@pytest.fixture(scope="module")
+def fixed():
+    lay = single_layout(*gears(), 3)
+    return build_train_model(lay, TrainOptions(torques=(T,), profile_size=1.0, axial_size=2.5))
+
+
+@pytest.fixture(scope="module")
+def floating(fixed):
+    from dataclasses import replace
+
+    return fixed.with_options(replace(fixed.opts, sun_axis="floating"))
+
+
+PSI = 2 * math.pi * np.arange(3) / (3 * 24)  # three positions over a mesh cycle
+
+
+def pin(e_t, e_r=0.0, planet=0):
+    p = [(0.0, 0.0)] * 3
+    p[planet] = (e_r, e_t)
+    return TrainErrors(pins=tuple(p))
+
+
+def test_ideal_train_equal_shares(fixed):
+    r = solve_run(fixed, TrainErrors(), T, PSI)
+    assert np.abs(r.sun_share * 3 - 1).max() < 0.005
+    assert np.abs(r.ring_share * 3 - 1).max() < 0.005
+    assert r.k_gamma == pytest.approx(1.0, abs=0.005)
+    assert r.unloaded == []
+
+
+def path_stiffness(model, psi, h=0.02):
+    """Tangent stiffness [N/mm] of one planet's path (sun mesh and ring mesh in series) along the line of action,
+    from the ideal train at T and T (1 + h): dP / du with P = s T / r_b1 and u = r_b1 omega_1."""
+    rb = model.layout.sun.r_b
+    a, b = (solve_run(model, TrainErrors(), t, [psi]) for t in (T, T * (1 + h)))
+    dP = (b.sun_share[0, 0] * b.torque - a.sun_share[0, 0] * a.torque) / rb
+    du = -(b.te[0] - a.te[0]) / model.layout.carrier_ratio * rb
+    return dP / du
+
+
+@pytest.mark.parametrize("e", [0.5e-3, -0.5e-3])
+def test_single_pin_error_linear_and_closed_form(fixed, e):
+    """Sun held: K_gamma - 1 proportional to e, and = n k (e-bar - e_i) 2 cos(alpha) r_b1 / T at the most loaded planet
+    (docs/trains.md, Eq. T6)."""
+    psi = PSI[:1]
+    k1 = solve_run(fixed, pin(e), T, psi).k_gamma - 1
+    k2 = solve_run(fixed, pin(2 * e), T, psi).k_gamma - 1
+    assert k2 / k1 == pytest.approx(2.0, rel=0.02)
+    k = path_stiffness(fixed, psi[0])
+    a = np.array([2 * e * math.cos(ALPHA), 0.0, 0.0])  # the path openings
+    closed = 3 * k * float((a.mean() - a).max()) * fixed.layout.sun.r_b / T
+    assert k1 == pytest.approx(closed, rel=0.05)
+
+
+def test_floating_sun_shares_and_centre(floating):
+    """Floating sun, one pin error (tangential and radial): K_gamma = 1 and the sun centre where the unloaded
+    isostatic TCA puts it (first order, tca.isostatic.linear)."""
+    e_t, e_r = 5e-3, 3e-3
+    r = solve_run(floating, pin(e_t, e_r, planet=1), T, PSI)
+    assert r.k_gamma == pytest.approx(1.0, abs=0.01)
+    sun, pl, ring = gears()
+    iso = IsostaticTrain(sun, (pl,) * 3, ring, placements=(PlanetPlacement(), PlanetPlacement(e_t, e_r),
+                                                          PlanetPlacement()))
+    mc = floating.layout.carrier_ratio
+    lin = linear_response(iso, PSI / (1 - mc))  # the sun's absolute angle
+    err = np.linalg.norm(r.sun_center - lin.sun_center, axis=1) / np.linalg.norm(lin.sun_center, axis=1)
+    assert err.max() < 0.05
+
+
+def test_pair_regression(fixed):
+    """One mesh, the driven rotation its only DOF: the train solve is the pair LTCA's solve."""
+    key = next(iter(fixed.layout.pairs))
+    L = fixed.slices(key, 0.3).lines
+    torque = 300e3 * L.arm0 / 100.0
+    ref = solve_contact(L, torque, STEEL, fixed.local)
+    L0 = max(float(np.ptp(L.xi[L.pair == 0])), L.ds)
+    block = MeshBlock(L.W, L.gap, L.arm[:, None], SliceLaw(L.length, L.radius, L.depth), L.kappa,
+                      torque / L.arm0 / L0)
+    sol = solve_train([block], RigidSystem(np.zeros((1, 1)), np.array([torque]), np.array([torque])), STEEL,
+                      fixed.local)
+    assert sol.q[0] == pytest.approx(ref.delta, rel=1e-6)
+    np.testing.assert_allclose(sol.F[0], ref.F, atol=1e-6 * ref.F.sum())
+    np.testing.assert_allclose(sol.pressure[0], ref.pressure, rtol=1e-5, atol=1e-6 * ref.pressure.max())
+
+
+def test_unloaded_planet_is_a_result(fixed):
+    """A large positive pin error lifts planet 1 off both meshes: its share is 0 and it is reported."""
+    r = solve_run(fixed, pin(0.05), T, PSI[:1])
+    assert r.sun_share[0, 0] == 0.0
+    assert r.unloaded == [(1, 1)]
+    assert r.sun_share[0].sum() == pytest.approx(1.0, rel=1e-9)
