@@ -192,6 +192,11 @@ class TrainModel:
         self._rows[(site, frac)] = r
         return r
 
+    @property
+    def cached_phases(self) -> int:
+        """Distinct (pair, phase) slice sets built so far."""
+        return len(self._slices)
+
     def with_options(self, opts: TrainOptions) -> "TrainModel":
         """The same TCAs, flank compliances and slices under other supports (sun axis, sun support, pins): the
         rigid DOFs are rebuilt, the slices reused (they do not depend on the supports)."""
