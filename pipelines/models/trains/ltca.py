@@ -139,7 +139,7 @@ def run_train_ltca(case: TrainCase, out: Path, say=None, bar=None) -> dict:
         "regulation": case.opts.regulation if case.kind == "planetary" else None,
         "regulation_dz_mm": [list(d) for d in dz],
         "k_gamma": max(p["k_gamma"] for p in per_torque),
-        "planet_shares": per_torque[0]["planet_shares"] if len(per_torque) == 1 else None,
+        "planet_shares": per_torque[0]["planet_shares"], "planet_shares_torque_nm": per_torque[0]["torque_nm"],
         "torques": per_torque, "conventions": CONVENTIONS,
         "positions": J, "meshes": len(layout.sites), "build": model.build, "build_s": t_build,
         "solve_all_s": t_solve,
