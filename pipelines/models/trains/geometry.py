@@ -45,6 +45,13 @@ order in the error as :mod:`tca.isostatic.linear`: with :math:`R(\cdot)` the pla
 :math:`\Delta E_t` along the carrier's rotation (Part 3, Eq. 3.12; Part 1's :math:`\Delta E_x = -\Delta E_t`),
 the centre errors in the fixed frame. The errors of Part 1 (:math:`\Delta E_x`, :math:`\Delta\gamma`, the
 regulation :math:`\Delta Z`) are built into the pairs exactly, as by its train TCA.
+
+Regulation and the twin. A twin planet is one rigid body. Without regulation its members sit on the shaft as
+made (at the nominal angle). Part 1's regulation moves each member along its axis while the sun mesh turns it
+(the screw motion "absorbed by the planet angle, which the sun mesh fixes", :mod:`tca.planetary.subgear`): a
+regulated member is mounted at its own sun-contact angle, turned on the shaft by
+:math:`\delta_k = \overline{\Delta\phi_2^{(k)}}` (the mean TE of its sun mesh, with its errors and ΔZ), which is
+the member independence the train TCA and its regulation assume. (``regulated``; the model computes δ_k.)
 """
 
 from __future__ import annotations
@@ -107,6 +114,7 @@ class TrainLayout:
     center_distance: float  # E [mm]
     twin: object = None  # the DoubleHelicalTrain of Part 1 (None for a single train)
     labels: dict = field(default_factory=dict)  # key -> readable name of the pair
+    regulated: bool = False  # Part 1: members mounted at their own sun-contact angle (module docstring)
 
     @property
     def teeth(self) -> tuple[int, int, int]:
@@ -138,9 +146,10 @@ def _frames(theta: float, zk: float, E: float) -> tuple[Pose, Pose]:
             Pose(A2.T, np.array([E * math.cos(theta), E * math.sin(theta), zk])))
 
 
-def double_helical_layout(train: DoubleHelicalTrain, errors, dz) -> TrainLayout:
+def double_helical_layout(train: DoubleHelicalTrain, errors, dz, regulated: bool = False) -> TrainLayout:
     """Part 1's train: every shaft i with its errors ``errors[i]`` (:class:`ShaftErrors`) and axial regulation
-    ``dz[i] = (ΔZ_a, ΔZ_b)`` [mm], both members; the pairs of :func:`tca.planetary.subgear.subgear_pairs`."""
+    ``dz[i] = (ΔZ_a, ΔZ_b)`` [mm], both members; the pairs of :func:`tca.planetary.subgear.subgear_pairs`.
+    ``regulated``: the members are mounted at their own sun-contact angles (module docstring)."""
     n = train.planets
     errors, dz = tuple(errors), tuple(tuple(float(v) for v in d) for d in dz)
     if len(errors) != n or len(dz) != n:
@@ -166,7 +175,7 @@ def double_helical_layout(train: DoubleHelicalTrain, errors, dz) -> TrainLayout:
             for kind, fr in (("sun", f1), ("ring", f2)):
                 sites.append(MeshSite(i, k, kind, (gk, kind), mirrored and k == "b", fr))
     return TrainLayout(train.sun, train.planet, train.ring, n, ("a", "b"), tuple(sites), pairs, np.array(origins),
-                       np.array(axes), E, train, labels)
+                       np.array(axes), E, train, labels, bool(regulated))
 
 
 def single_layout(sun: Gear, planet: Gear, ring: Gear, planets: int) -> TrainLayout:

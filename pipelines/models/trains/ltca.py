@@ -56,7 +56,7 @@ def train_layout(case: TrainCase, say=None) -> tuple[TrainLayout, tuple]:
     """The layout of the case's train and the regulation used ((0, 0) per shaft for isostatic trains)."""
     if case.kind == "planetary":
         dz = regulation_dz(case, say)
-        return double_helical_layout(case.twin, case.shaft_errors, dz), dz
+        return double_helical_layout(case.twin, case.shaft_errors, dz, case.opts.regulation != "none"), dz
     return single_layout(case.sun, case.planet, case.ring, case.planets), ()
 
 

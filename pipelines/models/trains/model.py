@@ -24,6 +24,10 @@ which opens slice s by :math:`\Delta\phi_2\,m_{2,s}`, :math:`m_{2,s} = ((\mathbf
 the last terms the prescribed translations of the driver's and the driven body's teeth (errors entered as
 offsets, :func:`pipelines.models.trains.geometry.offsets`).
 
+A regulated member of a twin is mounted turned by its sun-contact angle :math:`\delta_k`
+(:mod:`pipelines.models.trains.geometry`): its slices' c take the rigid motion of a planet rotation
+:math:`\delta_k`, :math:`c \leftarrow c - B_{\omega_i}\delta_k`.
+
 Rigid rows (Eq. T1) in the carrier frame: the sun turns about :math:`+z_f` through the origin, planet i about
 its own axis through its pin (:attr:`TrainLayout.planet_axis`), the ring is held; translations of the sun
 (floating, or on a support of finite stiffness) and of the planets (elastic pins) in the plane of the train.
@@ -129,6 +133,7 @@ class TrainModel:
     dof: DofMap
     teeth: int
     build: dict  # timings [s] and sizes
+    turn: dict = field(default_factory=dict)  # member key -> screw turn δ_k of a regulated member [rad]
     _slices: dict = field(default_factory=dict, repr=False)
     _rows: dict = field(default_factory=dict, repr=False)
 
@@ -224,6 +229,9 @@ class TrainModel:
                 c = ss.c0 - nxy @ off["sun"] + nxy @ off["planets"][site.planet]
             else:
                 c = ss.c0 - nxy @ off["planets"][site.planet] + nxy @ off["ring"]
+            dk = self.turn.get(site.key[0], 0.0)
+            if dk:  # the member mounted turned by its screw turn: a planet rotation of its teeth
+                c = c - r.B[:, self.dof.planet_rot[site.planet]] * dk
             L0 = max(float(np.ptp(L.xi[L.pair == 0])) if (L.pair == 0).any() else 0.0, L.ds)
             members = len(self.layout.members)
             out.append(MeshBlock(L.W, c, r.B, SliceLaw(L.length, L.radius, L.depth), L.kappa,
@@ -263,6 +271,12 @@ def build_train_model(layout: TrainLayout, opts: TrainOptions, say=None) -> Trai
     mte = {}
     for key, pair in layout.pairs.items():
         mte[key] = MeshTE.from_result(run_pair_tca(pair, one))
+    turn = {}
+    if layout.regulated:
+        u = np.arange(40) / 40.0
+        for (gk, kind), m1 in mte.items():
+            if kind == "sun":
+                turn[gk] = float(np.mean(m1(m1.phi0 + m1.pitch * u)))
     t_tca = time.perf_counter() - t0
     if say is not None:
         say(f"build: {len(mte)} pair TCAs in {t_tca:.1f} s")
@@ -302,4 +316,5 @@ def build_train_model(layout: TrainLayout, opts: TrainOptions, say=None) -> Trai
     dof = DofMap.build(layout.planets, floating, opts.pin_stiffness is not None)
     build = {"tca_s": t_tca, "compliance_s": t_fc, "total_s": time.perf_counter() - t0, "pairs": len(mte),
              "bodies": len([f for f in flanks.values() if not isinstance(f, MirroredFlank)])}
-    return TrainModel(layout, opts, mte, flanks, (hu, hz, ds), c_loc, dof, teeth, build)
+    build["member_turn_arcsec"] = {layout.labels[(k, "sun")]: v / (math.pi / 648000) for k, v in turn.items()}
+    return TrainModel(layout, opts, mte, flanks, (hu, hz, ds), c_loc, dof, teeth, build, turn)
