@@ -10,7 +10,7 @@ import numpy as np
 
 from pipelines.render.plots import plt, savefig
 
-__all__ = ["plot_train_ltca"]
+__all__ = ["plot_train_ltca", "plot_compare_trains"]
 
 
 def plot_train_ltca(runs: list, out: Path, title: str = "") -> list[str]:
@@ -60,3 +60,20 @@ def plot_train_ltca(runs: list, out: Path, title: str = "") -> list[str]:
         savefig(fig, out / "sun_center.png")
         files.append("sun_center.png")
     return files
+
+
+def plot_compare_trains(runs: dict, out: Path) -> str:
+    """``compare_shares.png``: the largest planet share (n x max share) of each train against the carrier angle,
+    and its K_γ, one curve per train (``runs``: label -> TrainRun of the first torque); the file name."""
+    fig, ax = plt.subplots(figsize=(8, 4.0))
+    for q, (label, r) in enumerate(runs.items()):
+        ax.plot(np.degrees(r.carrier), r.planets * r.sun_share.max(1), "-", color=f"C{q % 10}", lw=1.0,
+                label=f"{label}: K_gamma = {r.k_gamma:.4f}")
+    ax.axhline(1.0, color="k", lw=0.6, ls="--")
+    ax.set_xlabel("carrier angle [deg]")
+    ax.set_ylabel("n x largest planet share")
+    ax.set_title("Load sharing of two trains (loaded TCA)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    savefig(fig, out / "compare_shares.png")
+    return "compare_shares.png"

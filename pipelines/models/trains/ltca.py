@@ -32,9 +32,9 @@ from pipelines.models.trains.geometry import TrainLayout, double_helical_layout,
 from pipelines.models.trains.model import build_train_model
 from pipelines.models.trains.run import CONVENTIONS, TrainRun, solve_run, train_positions
 from pipelines.render.html import image, section, table, write_page
-from pipelines.render.trains import plot_train_ltca
+from pipelines.render.trains import plot_compare_trains, plot_train_ltca
 
-__all__ = ["train_layout", "run_train_ltca", "regulation_dz"]
+__all__ = ["train_layout", "run_train_ltca", "regulation_dz", "compare_trains"]
 
 
 def regulation_dz(case: TrainCase, say=None) -> tuple:
@@ -107,7 +107,7 @@ def _run_summary(run: TrainRun, layout: TrainLayout) -> dict:
     return s
 
 
-def run_train_ltca(case: TrainCase, out: Path, say=None, bar=None) -> dict:
+def run_train_ltca(case: TrainCase, out: Path, say=None, bar=None, runs: list | None = None) -> dict:
     """Build the train's model, solve every torque over the run, write the files (module docstring); the summary."""
     t0 = time.perf_counter()
     layout, dz = train_layout(case, say)
@@ -117,11 +117,13 @@ def run_train_ltca(case: TrainCase, out: Path, say=None, bar=None) -> dict:
     if say is not None:
         say(f"{len(psi1)} positions over {case.opts.carrier_revolutions:g} carrier revolution(s), "
             f"{len(layout.sites)} meshes, {len(case.opts.torques)} torque(s)")
-    runs, rows = [], []
+    keep, runs, rows = runs, [], []
     t1 = time.perf_counter()
     for T in case.opts.torques:
         r = solve_run(model, case.errors, T, psi1, bar)
         runs.append(r)
+        if keep is not None:
+            keep.append(r)
         rows += _rows(r, layout)
     t_solve = time.perf_counter() - t1
     out = Path(out)
@@ -165,3 +167,33 @@ def run_train_ltca(case: TrainCase, out: Path, say=None, bar=None) -> dict:
     write_page(out / "report.html", f"Loaded TCA of the train: {case.title}", *rep)
     summary["files"] = files + ["report.html"]
     return summary
+
+
+def compare_trains(cases: dict, out: Path, say=None, bar=None) -> dict:
+    """Two trains side by side (``cases``: label -> TrainCase, e.g. regulated against not, floating against fixed
+    sun): each run into ``out/<label>``, then ``compare_shares.png``, ``compare.json`` rows and ``report.html``."""
+    out = Path(out)
+    runs, summaries = {}, {}
+    for label, c in cases.items():
+        (out / label).mkdir()
+        kept = []
+        summaries[label] = run_train_ltca(c, out / label, say, bar, kept)
+        runs[label] = kept[0]
+    png = plot_compare_trains(runs, out)
+    rows = [{"train": label, "title": s["title"], "sun_axis": s["sun_axis"], "regulation": s["regulation"] or "",
+             "torque_nm": s["torques"][0]["torque_nm"], "k_gamma": s["torques"][0]["k_gamma"],
+             "k_gamma_members": s["torques"][0].get("k_gamma_members", ""),
+             "min_share": min(p["sun_min"] for p in s["planet_shares"]),
+             "max_share": max(p["sun_max"] for p in s["planet_shares"]),
+             "te_p2p_arcsec": s["torques"][0]["te_loaded_peak_to_peak_arcsec"],
+             "unloaded_planets": len(s["torques"][0]["unloaded_planets"])} for label, s in summaries.items()]
+    (a, ra), (b, rb) = runs.items()
+    better = a if ra.k_gamma < rb.k_gamma else b
+    finding = (f"{better} shares the load more evenly: K_gamma {min(ra.k_gamma, rb.k_gamma):.4f} against "
+               f"{max(ra.k_gamma, rb.k_gamma):.4f}")
+    write_page(out / "report.html", "Two trains under load", section("Load sharing", table(rows)),
+               section("Finding", f"<p>{finding}</p>"),
+               image(out / png, "n x the largest planet share against the carrier angle, both trains"),
+               section("Conventions", table([{"quantity": k, "convention": v} for k, v in CONVENTIONS.items()])))
+    return {"rows": rows, "finding": finding, "files": [png, "report.html", "compare.json"] +
+            [f"{k}/{f}" for k, s in summaries.items() for f in s["files"]], "summaries": summaries}

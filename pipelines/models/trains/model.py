@@ -283,8 +283,13 @@ def build_train_model(layout: TrainLayout, opts: TrainOptions, say=None) -> Trai
     g0 = layout.sun
     hu, hz, ds = opts.sizes(g0.module, min(g.face_width for g in (layout.sun, layout.planet, layout.ring)))
     teeth = opts.teeth
+    P = opts.positions_per_cycle
+    psi = 2 * math.pi * np.arange(P) / (P * layout.sun.teeth)  # the phases repeat every mesh cycle
     for key, pair in layout.pairs.items():
-        teeth = max(teeth, teeth_in_reach(pair, mte[key], mte[key].result.phi1, ds, opts.reach, opts.teeth))
+        m = mte[key]
+        phis = sorted({m.phi0 + m.pitch * (((layout.driver_angle(s, float(p)) - m.phi0) / m.pitch) % 1.0)
+                       for s in layout.sites if s.key == key for p in psi})
+        teeth = max(teeth, teeth_in_reach(pair, m, np.array(phis), ds, opts.reach, opts.teeth))
     if teeth > 9:
         raise InputError("ltca.reach_um", opts.reach * 1e3, f"a reach whose pairs of teeth fit a model of at most 9 "
                          f"teeth per gear (they span {teeth})")

@@ -74,3 +74,27 @@ def test_cli_part3_indexing_run(tmp_path):
     assert 15.0 < s["torques"][0]["sun_center_um"]["max_offset"] < 30.0  # 2 s / 3 = 25 um (Part 3, 3.4.2)
     lines = (out / "results.csv").read_text().strip().splitlines()
     assert len(lines) == 1 + 2 * 2
+
+
+@pytest.mark.bench  # two model builds (~15 s): run by make bench, to keep make test within its budget
+def test_cli_compare_floating_against_fixed_sun(tmp_path):
+    """gearfe compare of two trains: the Part 3 indexing case with the sun floating and held, one position."""
+    ltca = {**COARSE, "positions_per_cycle": 1, "carrier_revolutions": 1.0 / 151}
+    a = write_case(tmp_path, "floating", shipped_table("part3_indexing", {"ltca": ltca}).data)
+    b = write_case(tmp_path, "fixed", shipped_table("part3_indexing", {"ltca": ltca, "train.sun_axis": "fixed"}).data)
+    out = tmp_path / "out"
+    assert main(["compare", str(a), str(b), "--out", str(out)]) == 0
+    s = json.loads((out / "compare.json").read_text())
+    k = {r["train"]: r["k_gamma"] for r in s["rows"]}
+    assert k["floating"] == pytest.approx(1.0, abs=0.01) and k["fixed"] > 1.3
+    assert s["finding"].startswith("floating shares the load more evenly")
+    for f in ("compare_shares.png", "report.html", "floating/planet_shares.png", "fixed/results.csv"):
+        assert (out / f).is_file()
+
+
+def test_cli_compare_train_with_a_pair_is_bad_input(tmp_path, capsys):
+    a = write_case(tmp_path, "a", shipped_table("part3_indexing").data)
+    out = tmp_path / "out"
+    assert main(["compare", str(a), "pipelines/cases/stress_pair_small.toml", "--out", str(out)]) == 2
+    assert "kind" in capsys.readouterr().err
+    assert not out.exists()
