@@ -121,3 +121,35 @@ def test_unloaded_planet_is_a_result(fixed):
     assert r.sun_share[0, 0] == 0.0
     assert r.unloaded == [(1, 1)]
     assert r.sun_share[0].sum() == pytest.approx(1.0, rel=1e-9)
+
+
+def test_elastic_pins_closed_form(fixed):
+    """Pins of stiffness k_p: the planet force 2 P cos(alpha) (tangential) moves the pin by 2 P cos(alpha) / k_p, which
+    opens the path by 2 cos(alpha) times that: the path stiffness becomes 1 / (1/k + 4 cos^2(alpha) / k_p) in
+    Eq. (T6) (docs/trains.md)."""
+    from dataclasses import replace
+
+    kp = 300e3  # N/mm = 300 N/um
+    model = fixed.with_options(replace(fixed.opts, pin_stiffness=kp))
+    e, psi = 0.5e-3, PSI[:1]
+    ideal = solve_run(model, TrainErrors(), T, psi)
+    assert ideal.k_gamma == pytest.approx(1.0, abs=0.005)
+    k1 = solve_run(model, pin(e), T, psi).k_gamma - 1
+    k = path_stiffness(fixed, psi[0])
+    keff = 1.0 / (1.0 / k + 4 * math.cos(ALPHA) ** 2 / kp)
+    closed = 2 * keff * e * math.cos(ALPHA) * fixed.layout.sun.r_b / T
+    assert k1 == pytest.approx(closed, rel=0.05)
+    assert k1 < solve_run(fixed, pin(e), T, psi).k_gamma - 1
+
+
+def test_sun_support_between_held_and_floating(fixed):
+    """A sun on a support: stiff, it behaves as held; soft, as floating (K_gamma between, monotone)."""
+    from dataclasses import replace
+
+    psi, err = PSI[:1], pin(2e-3)
+    held = solve_run(fixed, err, T, psi).k_gamma
+    floating = solve_run(fixed.with_options(replace(fixed.opts, sun_axis="floating")), err, T, psi).k_gamma
+    k = [solve_run(fixed.with_options(replace(fixed.opts, sun_support=s)), err, T, psi).k_gamma
+         for s in (1e9, 1e5, 1e3)]
+    assert k[0] == pytest.approx(held, abs=1e-3) and k[2] == pytest.approx(floating, abs=2e-3)
+    assert held > k[1] > floating
