@@ -99,6 +99,7 @@ class SolveOptions:
     eq_tol: float = 1e-10
     max_fixed_point: int = 40
     max_newton: int = 80
+    tangent: bool = True  # Newton (True) or secant (False) iteration on the local compliance
 
 
 @dataclass(frozen=True, eq=False)
@@ -166,17 +167,18 @@ def mesh_lcp(M: np.ndarray, c: np.ndarray, A0: np.ndarray | None = None, maxit: 
 class _Meshes:
     """The blocks at the current local compliances: evaluates F(q), Φ(q) and the Hessian (module docstring)."""
 
-    def __init__(self, blocks, rigid: RigidSystem, diag):
+    def __init__(self, blocks, rigid: RigidSystem, diag, shift=None):
         self.blocks, self.rigid = blocks, rigid
         self.M = [b.W + np.diag(dg) for b, dg in zip(blocks, diag)]
+        self.c = [b.c if shift is None else b.c + sh for b, sh in zip(blocks, shift or [None] * len(blocks))]
         self.active = [None] * len(blocks)
         self.touch = [None] * len(blocks)
         self.lcp = 0
 
     def loads(self, q):
         F = []
-        for j, (b, M) in enumerate(zip(self.blocks, self.M)):
-            cq = b.c - b.B @ q
+        for j, (b, M, c) in enumerate(zip(self.blocks, self.M, self.c)):
+            cq = c - b.B @ q
             Fj, Aj, it = mesh_lcp(M, cq, self.active[j])
             self.lcp += it
             F.append(Fj)
@@ -280,9 +282,9 @@ def _line_search(mesh: _Meshes, q, step, slope: float, maxit: int = 60):
 def _closing(mesh: _Meshes, q, F, step) -> float:
     """Fraction t of ``step`` at which the first open slice closes (inf: none)."""
     t_min = math.inf
-    for b, M, Fj in zip(mesh.blocks, mesh.M, F):
+    for b, M, c, Fj in zip(mesh.blocks, mesh.M, mesh.c, F):
         rate = b.B @ step
-        d = b.c - b.B @ q + M @ Fj
+        d = c - b.B @ q + M @ Fj
         ok = (rate > 0) & (d > 0)
         if ok.any():
             t_min = min(t_min, float(np.min(d[ok] / rate[ok])))
@@ -298,6 +300,26 @@ def _first_contact(mesh: _Meshes, q, F, direction) -> np.ndarray:
     return (1.01 * t) * direction
 
 
+def _local_law(blocks, F, material: Material, c_loc: float, tangent: bool):
+    """The local (Hertzian) compliance of every mesh at loads F: (diagonal, shift of c) per mesh. Secant: δ_s/F_s, no
+    shift. Tangent (loaded slices): δ_s(F) ≈ δ_s(F0) + D_s (F − F0), D_s = dδ_s/dF_s, so M gets D and c gets
+    δ_s(F0) − D_s F0: Newton's method on the flattening law (the converged loads are the same)."""
+    diag, shift = [], []
+    for b, Fj in zip(blocks, F):
+        sec = local_compliance(Fj, b.law, material, c_loc, b.w_guess)
+        on = Fj > 0
+        if not tangent or not on.any():
+            diag.append(sec)
+            shift.append(np.zeros_like(sec))
+            continue
+        h = 1e-4
+        up = local_compliance(Fj * (1 + h), b.law, material, c_loc, b.w_guess)
+        D = np.where(on, (up * (1 + h) - sec) / h, sec)  # d(sec F)/dF at F > 0
+        diag.append(D)
+        shift.append(np.where(on, (sec - D) * Fj, 0.0))
+    return diag, shift
+
+
 def solve_train(blocks, rigid: RigidSystem, material: Material, c_loc: float, warm: Warm | None = None,
                 opts: SolveOptions = SolveOptions()) -> TrainSolution:
     """Loads, rigid motions and pressures of the train at one position and load (module docstring)."""
@@ -308,8 +330,8 @@ def solve_train(blocks, rigid: RigidSystem, material: Material, c_loc: float, wa
         F = [np.zeros(len(b.c)) for b in blocks]
     its = lcps = 0
     for fp in range(1, opts.max_fixed_point + 1):
-        diag = [local_compliance(Fj, b.law, material, c_loc, b.w_guess) for b, Fj in zip(blocks, F)]
-        mesh = _Meshes(blocks, rigid, diag)
+        diag, shift = _local_law(blocks, F, material, c_loc, opts.tangent)
+        mesh = _Meshes(blocks, rigid, diag, shift)
         mesh.active = [(Fj > 0) if Fj.any() else None for Fj in F]
         q, F_new, it = _newton(mesh, q, opts)
         its += it
