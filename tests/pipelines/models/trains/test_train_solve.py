@@ -153,3 +153,24 @@ def test_sun_support_between_held_and_floating(fixed):
          for s in (1e9, 1e5, 1e3)]
     assert k[0] == pytest.approx(held, abs=1e-3) and k[2] == pytest.approx(floating, abs=2e-3)
     assert held > k[1] > floating
+
+
+def test_twin_train_in_phase_members_share_equally():
+    """A double-helical train (Part 1's kind) in phase, no errors: every member of every twin carries 1/(2n)."""
+    from tca.planetary.train import DoubleHelicalTrain, ShaftErrors
+    from pipelines.models.trains.geometry import double_helical_layout
+
+    d = math.radians
+    sun = Gear("sun", 27, 2.0, d(20), 8, helix=d(10), hand=1)
+    planet = Gear("planet", 24, 2.0, d(20), 8, helix=d(10), hand=-1, parabola_pos=0.005, parabola_neg=0.005)
+    ring = Gear("ring", 75, 2.0, d(20), 8, helix=d(10), hand=-1, internal=True)
+    train = DoubleHelicalTrain(sun, planet, ring, 3, 4.0)
+    lay = double_helical_layout(train, [ShaftErrors()] * 3, [(0.0, 0.0)] * 3)
+    assert sum(s.mirror for s in lay.sites) == 6 and len(lay.pairs) == 2  # member b: member a's slices mirrored
+    from tca.pair.analysis import TCAOptions
+
+    model = build_train_model(lay, TrainOptions(torques=(T,), profile_size=1.5, axial_size=4.0, slice=2.0,
+                                                positions_per_cycle=1, tca=TCAOptions(steps_per_cycle=12)))
+    r = solve_run(model, TrainErrors(), T, [0.0])
+    assert np.abs(r.member_share * 6 - 1).max() < 0.005
+    assert r.k_gamma_members == pytest.approx(1.0, abs=0.005)
