@@ -12,7 +12,7 @@ from pipelines.cases.trains import read_planetary_ltca
 
 from tests.support.shipped import shipped_table, write_case
 
-COARSE = {"profile_size_mm": 1.5, "axial_size_mm": 5.0, "slice_mm": 2.0}
+COARSE = {"profile_size_mm": 2.0, "axial_size_mm": 8.0, "slice_mm": 4.0}
 
 
 def read_isostatic(t):
