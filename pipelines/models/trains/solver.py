@@ -61,6 +61,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.linalg import cho_factor, cho_solve
 
 from fem.material import Material
 from tca.errors import ConvergenceError
@@ -125,12 +126,13 @@ class TrainSolution:
         return Warm(self.q, self.F)
 
 
-def mesh_lcp(M: np.ndarray, c: np.ndarray, A0: np.ndarray | None = None, maxit: int = 500):
+def mesh_lcp(M: np.ndarray, c: np.ndarray, A0: np.ndarray | None = None, maxit: int = 500, solve=None):
     """F >= 0 with d = c + M F >= 0, F d = 0 for symmetric positive definite M (S, S); returns (F, active, iterations).
 
     Block principal pivoting from the active set ``A0`` (default: the slices with c <= 0): solve on the active set,
     drop slices with negative loads and add penetrating ones, all at once; when the number of infeasible slices
     has not decreased for three steps, Murty's least-index rule (one slice at a time: finite for P-matrices).
+    ``solve(idx, rhs)``: M[idx, idx]^-1 rhs (default: a dense solve; the train solve passes cached factors).
     """
     S = len(c)
     if S == 0:
@@ -143,7 +145,7 @@ def mesh_lcp(M: np.ndarray, c: np.ndarray, A0: np.ndarray | None = None, maxit: 
         F[:] = 0.0
         idx = np.flatnonzero(A)
         if len(idx):
-            F[idx] = np.linalg.solve(M[np.ix_(idx, idx)], -c[idx])
+            F[idx] = np.linalg.solve(M[np.ix_(idx, idx)], -c[idx]) if solve is None else solve(idx, -c[idx])
         d = c + M @ F
         bad_f = A & (F < 0)
         bad_d = ~A & (d < -1e-13 * scale)
@@ -174,12 +176,22 @@ class _Meshes:
         self.active = [None] * len(blocks)
         self.touch = [None] * len(blocks)
         self.lcp = 0
+        self.factors = [dict() for _ in blocks]  # Cholesky factors of M[A, A] per active set (M is fixed here)
+
+    def solve(self, j: int, idx, rhs):
+        """M_j[idx, idx]^-1 rhs with the factor of that active set computed once."""
+        key = idx.tobytes()
+        f = self.factors[j].get(key)
+        if f is None:
+            f = cho_factor(self.M[j][np.ix_(idx, idx)], check_finite=False)
+            self.factors[j][key] = f
+        return cho_solve(f, rhs, check_finite=False)
 
     def loads(self, q):
         F = []
         for j, (b, M, c) in enumerate(zip(self.blocks, self.M, self.c)):
             cq = c - b.B @ q
-            Fj, Aj, it = mesh_lcp(M, cq, self.active[j])
+            Fj, Aj, it = mesh_lcp(M, cq, self.active[j], solve=lambda idx, rhs, j=j: self.solve(j, idx, rhs))
             self.lcp += it
             F.append(Fj)
             self.active[j] = Aj
@@ -199,11 +211,11 @@ class _Meshes:
 
     def hessian(self) -> np.ndarray:
         H = self.rigid.K.copy()
-        for b, M, A in zip(self.blocks, self.M, self.touch):  # the touching slices: the curvature on closing
+        for j, (b, A) in enumerate(zip(self.blocks, self.touch)):  # the touching slices: the curvature on closing
             idx = np.flatnonzero(A)
             if len(idx):
                 BA = b.B[idx]
-                H += BA.T @ np.linalg.solve(M[np.ix_(idx, idx)], BA)
+                H += BA.T @ self.solve(j, idx, BA)
         return H
 
 
