@@ -112,6 +112,7 @@ def main(argv=None) -> int:
     ap.add_argument("--per-cycle", type=int, default=10)
     ap.add_argument("--quick", action="store_true", help="coarse flank grids, 4 positions per cycle")
     ap.add_argument("--only", choices=("findings", "speed"), default=None)
+    ap.add_argument("--train", choices=("part1", "part3"), default=None, help="speed of one train only")
     a = ap.parse_args(argv)
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -129,8 +130,10 @@ def main(argv=None) -> int:
         f["part3"] = [finding(n, {**g3, **_span(n, P if n in STATIONARY else max(2, P // 5))}, {"sun_axis": axis})
                       for n in PART3 for axis in ("floating", "fixed")]
     if a.only in (None, "speed"):
-        res["speed"]["part1"] = speed("part1_planetary_regulation", a.per_cycle, g1)
-        res["speed"]["part3"] = speed("part3_indexing", a.per_cycle, g3)
+        if a.train in (None, "part1"):
+            res["speed"]["part1"] = speed("part1_planetary_regulation", a.per_cycle, g1)
+        if a.train in (None, "part3"):
+            res["speed"]["part3"] = speed("part3_indexing", a.per_cycle, g3)
     (out / "summary.json").write_text(json.dumps(plain(res), indent=2) + "\n")
     (out / "trains.md").write_text(_markdown(res))
     return 0
