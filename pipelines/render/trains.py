@@ -38,8 +38,8 @@ def plot_train_ltca(runs: list, out: Path, title: str = "") -> list[str]:
         ax.plot(np.degrees(r.carrier), r.te / (math.pi / 180 / 3600), "-", color=f"C{q % 10}",
                 label=f"T = {r.torque * 1e-3:g} N m")
     ax.set_xlabel("carrier angle [deg]")
-    ax.set_ylabel("carrier lag [arcsec]")
-    ax.set_title("Loaded TE of the train: the carrier behind its kinematic angle")
+    ax.set_ylabel("carrier angle error [arcsec]")
+    ax.set_title("Loaded TE of the train: carrier angle minus its kinematic angle (negative: lags)")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
     savefig(fig, out / "te_train.png")

@@ -15,9 +15,9 @@ planet load-sharing factor of ISO 6336-1 / AGMA 6123 over the run is
 .. math:: K_\gamma = \max_j\; n\,\max_i s_{i,j},                                           \qquad (T5)
 
 and for a twin, per member k, :math:`K_{\gamma,\text{members}} = \max_j 2n\max_{i,k} s_{ik,j}`. The loaded
-TE of the train is the carrier's angle behind its kinematic angle at the given sun angle,
+TE of the train is the carrier's angle minus its kinematic angle at the given sun angle,
 :math:`\Delta\phi_c = -m_{c1}\,\omega_1` (:math:`\omega_1` the sun's rotation in the solve, relative to the
-carrier with the ring at its nominal place; positive: the carrier lags). The sun centre path (where the sun
+carrier with the ring at its nominal place; negative: the carrier lags). The sun centre path (where the sun
 floats or sits on a support) is its translation turned into the fixed frame, :math:`R(\phi_c)\,\mathbf t_1`.
 A planet that carries no load at a position is reported (``unloaded``), not an error.
 """
@@ -44,7 +44,7 @@ CONVENTIONS = {
                     "summed over its members",
     "k_gamma": "max over the positions of n x the largest planet share of the sun mesh (ISO 6336-1, AGMA 6123)",
     "k_gamma_members": "max over the positions of (n members) x the largest member share of the sun mesh",
-    "loaded_te": "carrier angle behind its kinematic angle at the given sun angle [arcsec]",
+    "loaded_te": "carrier angle minus its kinematic angle at the given sun angle [arcsec] (negative: the carrier lags)",
     "sun_center": "sun centre translation in the fixed frame [um]",
     "pin_error": "tangential along the carrier's rotation, radial outwards (Part 3, Eq. 3.12)",
 }
