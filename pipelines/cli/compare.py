@@ -128,8 +128,39 @@ def _cell(v) -> str:
     return str(v)
 
 
+def _train_kind(path: str) -> bool:
+    from pipelines.cases.reader import load_case
+
+    return load_case(path).data.get("kind") in ("isostatic", "planetary")
+
+
+def _handle_trains(args) -> int:
+    """Two train cases (kind 'isostatic' or 'planetary'): their loaded TCAs side by side (docs/trains.md)."""
+    from pipelines.cases.kinds import read_case
+    from pipelines.models.trains.ltca import compare_trains
+    from pipelines.jsonio import plain
+
+    for p in (args.new, args.conventional):
+        if not _train_kind(p):
+            raise InputError("kind", str(p), "a train case (kind 'isostatic' or 'planetary') like the other case")
+    stems = (Path(args.new).stem, Path(args.conventional).stem)
+    labels = stems if stems[0] != stems[1] else ("a", "b")
+    cases = {k: read_case(p, "ltca")[1] for k, p in zip(labels, (args.new, args.conventional))}
+    with staged_output(args.out) as tmp:
+        s = compare_trains(cases, Path(tmp), progress)
+        (Path(tmp) / "compare.json").write_text(json.dumps(plain({"rows": s["rows"], "finding": s["finding"],
+                                                                  "files": s["files"]}), indent=2) + "\n")
+    for r in s["rows"]:
+        print(f"  {r['train']}: {r['title']}: K_gamma {r['k_gamma']:.4f}")
+    print(f"  {s['finding']}")
+    print(f"results in {args.out}/")
+    return 0
+
+
 def handle(args) -> int:
     t0 = time.perf_counter()
+    if _train_kind(args.new) or _train_kind(args.conventional):
+        return _handle_trains(args)
     cases = {LABELS[0]: read_with_overrides(args.new, args), LABELS[1]: read_with_overrides(args.conventional, args)}
     a, b = cases.values()
     if a.model != b.model:

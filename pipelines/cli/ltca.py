@@ -28,7 +28,8 @@ __all__ = ["add_args", "handle"]
 
 
 def add_args(p: argparse.ArgumentParser) -> None:
-    p.add_argument("case", help="stress case file (TOML, model = 'pair'), e.g. pipelines/cases/ltca_pair_small.toml")
+    p.add_argument("case", help="stress case file (TOML, model = 'pair'), e.g. pipelines/cases/ltca_pair_small.toml, "
+                   "or a train case (kind 'isostatic' or 'planetary'), e.g. pipelines/cases/part3_indexing.toml")
     p.add_argument("--out", required=True, help="output folder")
 
 
@@ -39,7 +40,10 @@ def _say(msg: str) -> None:
 
 def handle(args) -> int:
     t0 = time.perf_counter()
-    _, (case, opts) = read_case(args.case, "ltca")  # bad input fails here, before any output
+    kind, read = read_case(args.case, "ltca")  # bad input fails here, before any output
+    if kind.name in ("isostatic", "planetary"):
+        return _handle_train(args, read, t0)
+    case, opts = read
     with staged_output(args.out) as tmp:
         s = run_ltca(case, opts, Path(tmp), say=_say, bar=progress_bar("gearfe ltca: positions"))
         s = {**s, "case": str(args.case), "rating": plain(ltca_rating(case, s, tmp)), "elapsed_s": time.perf_counter() - t0}
@@ -57,5 +61,30 @@ def handle(args) -> int:
         for k, v in w.items():
             print(f"  check vs full FE, {k}: worst {v:.4g} (target {s['fe_check']['targets'][k]}: {'met' if m[k] else 'MISSED'})")
     print_rating(s["rating"])
+    print(f"results in {args.out}/")
+    return 0
+
+
+def _handle_train(args, case, t0: float) -> int:
+    """A planetary train (docs/trains.md): shares, K_gamma, loaded TE, sun centre path."""
+    from pipelines.models.trains.ltca import run_train_ltca
+
+    with staged_output(args.out) as tmp:
+        s = run_train_ltca(case, Path(tmp), say=_say, bar=progress_bar("gearfe ltca: positions"))
+        s = {**s, "case": str(args.case), "elapsed_s": time.perf_counter() - t0}
+        s["files"] = s["files"] + ["summary.json"]
+        (Path(tmp) / "summary.json").write_text(json.dumps(plain(s), indent=2) + "\n")
+    t = s["timing"]
+    print(f"  build_s                    {s['build_s']:.3g}")
+    print(f"  solve_all_s                {s['solve_all_s']:.3g}  ({t['positions']} positions x {t['torques']} torques)")
+    print(f"  per_position_s             {t['per_position_s']:.3g}")
+    print(f"  per_torque_per_position_s  {t['per_torque_per_position_s']:.3g}")
+    for p in s["torques"]:
+        line = f"  T = {p['torque_nm']:g} N m on the sun: K_gamma {p['k_gamma']:.4f}"
+        if "k_gamma_members" in p:
+            line += f", K_gamma of the members {p['k_gamma_members']:.4f}"
+        print(line)
+        for u in p["unloaded_planets"]:
+            print(f"    planet {u['planet']} carries no load at {u['positions']} position(s)")
     print(f"results in {args.out}/")
     return 0

@@ -82,7 +82,7 @@ from pipelines.models.ltca.compliance import flattening
 from pipelines.models.stress.sizing import hertz_contact
 
 __all__ = ["Meshing", "ContactLines", "PairSlices", "pair_slices", "loaded_branch", "contact_lines", "teeth_in_reach",
-           "separation", "edge_slices", "hertz_kappa", "LoadedContact", "solve_contact"]
+           "separation", "edge_slices", "hertz_kappa", "LoadedContact", "solve_contact", "local_compliance", "SliceLaw"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -108,6 +108,7 @@ class ContactLines:
     dropped: tuple  # branches within reach but outside the modelled teeth
     length: np.ndarray  # (S,) slice lengths [mm]
     edge: np.ndarray  # (S,) boundary of an edge slice: 10 flank + boundary (1 tip, 2 z_max, 3 z_min); 0 on a line
+    normal: np.ndarray | None = None  # (S, 3) unit normal out of gear 1's tooth, pair frame (the rigid rows of a train)
 
 
 def _interp_params(mte: MeshTE, phi_ref: float):
@@ -266,7 +267,7 @@ def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: fl
         lam = q.lam[ok]
         rows.append((idx, q.xi[ok], q.xs[ok], q.gap[ok], arm[ok], 1.0 / lam[:, 1],
                      np.stack([loc1.depth[ok], loc2.depth[ok]], 1), loc1, loc2, ok,
-                     np.array([hertz_kappa(a, b, material) for a, b in lam]), q.length[ok], q.edge[ok]))
+                     np.array([hertz_kappa(a, b, material) for a, b in lam]), q.length[ok], q.edge[ok], q.n[ok]))
     if not rows or branches[0] != k:
         raise GeometryError(f"{pair.gear1.name}-{pair.gear2.name}", "contact line",
                             f"the loaded pair at phi = {math.degrees(phi):.6f} deg is not on the modelled flanks")
@@ -277,7 +278,7 @@ def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: fl
     W = _project(A1, fc1.C) + _project(A2, fc2.C)
     W = 0.5 * (W + W.T)
     return ContactLines(float(phi), te, k, tuple(branches), tuple(teeth), pidx, cat(1), cat(2), cat(3), cat(4), cat(5),
-                        cat(10), cat(6), float(ds), W, arm0, tuple(dropped), cat(11), cat(12))
+                        cat(10), cat(6), float(ds), W, arm0, tuple(dropped), cat(11), cat(12), cat(13))
 
 
 def teeth_in_reach(pair: GearPair, mte: MeshTE, phis, ds: float, reach: float, teeth: int = 1) -> int:
@@ -514,13 +515,27 @@ class LoadedContact:
     fixed_point: int
 
 
+def local_compliance(F, slices: "SliceLaw", material: Material, c: float, w_guess) -> np.ndarray:
+    """Local compliance δ_loc(w_s) / F_s [mm/N] of slices at loads F [N] (line load w_guess [N/mm] where F_s = 0):
+    the Hertzian flattening of both bodies (:func:`pipelines.models.ltca.compliance.flattening`, constant c)."""
+    w = np.where(F > 0, F / slices.length, w_guess)
+    Es = material.E / (2.0 * (1.0 - material.nu**2))
+    b = np.sqrt(4.0 * w * slices.radius / (math.pi * Es))
+    d = flattening(w, b, slices.depth[:, 0], material, c) + flattening(w, b, slices.depth[:, 1], material, c)
+    return d / (w * slices.length)
+
+
+class SliceLaw(NamedTuple):
+    """What the local compliance of slices needs: lengths [mm], R = 1/λ2 [mm], depths (S, 2) [mm]."""
+
+    length: np.ndarray
+    radius: np.ndarray
+    depth: np.ndarray
+
+
 def _local(F, lines: ContactLines, material: Material, c: float, w_guess: float) -> np.ndarray:
     """Local compliance δ_loc(w_s) / F_s [mm/N] at the current loads (w_guess where F_s = 0)."""
-    w = np.where(F > 0, F / lines.length, w_guess)
-    Es = material.E / (2.0 * (1.0 - material.nu**2))
-    b = np.sqrt(4.0 * w * lines.radius / (math.pi * Es))
-    d = flattening(w, b, lines.depth[:, 0], material, c) + flattening(w, b, lines.depth[:, 1], material, c)
-    return d / (w * lines.length)
+    return local_compliance(F, SliceLaw(lines.length, lines.radius, lines.depth), material, c, w_guess)
 
 
 def _active_set(M, g, a, T, A0, maxit=200):
