@@ -86,7 +86,8 @@ from tca.planetary.regulation import RegulationOptions, nominal_peak, regulate_m
 
 from pipelines.jsonio import plain
 from pipelines.models.stress.case import StressCase
-from pipelines.models.stress.model import check_resources, mesh_scene, solve_scene
+from pipelines.models.stress.loaded import EstimateGrid, Estimator
+from pipelines.models.stress.model import ELEMENTS, check_resources, mesh_scene, solve_scene
 from pipelines.models.stress.results import member_teeth, summarize
 from pipelines.models.stress.scene import Scene, TwinSetting, pair_scene, twin_scene
 
@@ -129,13 +130,21 @@ def build_scene(case: StressCase, progress=None):
     return scene, rec
 
 
-def _build(case: StressCase, progress=None):
+def estimator(case: StressCase, forced: dict | None = None) -> Estimator | None:
+    """The loaded estimate of a case's scene (``[mesh] sizing = "loaded"``, the default), or None (``"tca"``)."""
+    if case.mesh.sizing != "loaded":
+        return None
+    return Estimator(EstimateGrid(), case.fe.material, ELEMENTS[case.fe.element], case.fe.solver, case.mesh.teeth, forced)
+
+
+def _build(case: StressCase, progress=None, forced: dict | None = None):
     """:func:`build_scene` and the TCA result (PairTCAResult, or TwinTE of the twin drive)."""
     mat = case.fe.material
+    est = estimator(case, forced)
     if case.model == "pair":
         r = run_pair_tca(case.pair, case.tca)
         phi1 = position_angle(r, case.position, case.phi1, case.roll)
-        scene = pair_scene(case.pair, r, phi1, case.torque, case.mesh, mat)
+        scene = pair_scene(case.pair, r, phi1, case.torque, case.mesh, mat, est)
         rec = {"te_peak_to_peak_arcsec": r.te_peak_to_peak_arcsec, "edge_contact": r.edge_contact,
                "elapsed_s": r.elapsed}
         return scene, rec, r
@@ -146,7 +155,8 @@ def _build(case: StressCase, progress=None):
     grid = phi1_grid(case.train, case.tca)
     subs = {k: run_subgear_tca(case.train, 0, k, case.errors, dz[0 if k == "a" else 1], case.tca, np.array([phi1]), cache)
             for k in ("a", "b")}
-    scene = twin_scene(case.train, subs, TwinSetting(case.errors, dz, case.member_phase), phi1, case.torque, case.mesh, mat)
+    scene = twin_scene(case.train, subs, TwinSetting(case.errors, dz, case.member_phase), phi1, case.torque, case.mesh, mat,
+                       est)
     rec = {"twin_te_peak_to_peak_arcsec": float(np.ptp(tw.te) / ARCSEC), "twin_te_max_arcsec": float(tw.te.max() / ARCSEC),
            "edge_contact": bool(tw.members["a"].edge_contact or tw.members["b"].edge_contact),
            "phi1_grid_deg": [math.degrees(grid[0]), math.degrees(grid[-1])], "regulation": reg,
