@@ -81,7 +81,7 @@ from tca.pair.te import mesh_contact, tied_branches
 from pipelines.models.ltca.compliance import flattening
 from pipelines.models.stress.sizing import hertz_contact
 
-__all__ = ["ContactLines", "PairSlices", "pair_slices", "loaded_branch", "contact_lines", "teeth_in_reach",
+__all__ = ["Meshing", "ContactLines", "PairSlices", "pair_slices", "loaded_branch", "contact_lines", "teeth_in_reach",
            "separation", "edge_slices", "hertz_kappa", "LoadedContact", "solve_contact"]
 
 
@@ -208,7 +208,7 @@ def pair_slices(pair: GearPair, mte: MeshTE, phi: float, ds: float, reach: float
         kind = _ref_kind(mte, phr)
         parts = []
         L = min(B, math.sqrt(2 * max(reach - gam * arm_c, 0.0) / l1) if l1 > 0 else B)
-        line = _line_slices(f1, f2, par, x0, t, L, ds, phr, ph2c, gam * arm_c)
+        line = _line_slices(Meshing(f1, f2, phr, ph2c, par, gam * arm_c), x0, t, L, ds)
         if line is not None:  # the TCA point on both working areas: the line through it
             parts.append(line)
         if kind != ContactKind.SURFACE:  # an edge contact, or a tangency beyond a boundary: the boundaries too
@@ -318,19 +318,31 @@ BOUNDARY_TOL = 1e-6  # [mm] a point this close to a boundary lies on it (an edge
 EDGE_SLACK = 0.25  # fraction of a grid face beyond the border within which a boundary point is on its flank grid
 
 
+@dataclass(frozen=True, eq=False)
+class Meshing:
+    """Two placed flanks at the angles where a pair of teeth touches, and where its solves start:
+    ``par`` (u1, v1, u2, v2) [mm] a point near the contact, ``gap0`` [mm] a starting separation."""
+
+    f1: PlacedFlank
+    f2: PlacedFlank
+    phi1: float  # [rad]
+    phi2: float  # [rad]
+    par: np.ndarray
+    gap0: float = 0.0
+
+
 def in_area(f: PlacedFlank, uv: np.ndarray, tol: float = BOUNDARY_TOL) -> np.ndarray:
     """Points (u, v) (S, 2) [mm] of flank f inside its working area (within ``tol`` [mm] of it)."""
     return area_margin(f, uv) <= tol
 
 
-def _line_slices(f1, f2, par, x0, t, L: float, ds: float, phi1: float, phi2: float, gap0: float):
+def _line_slices(m: Meshing, x0, t, L: float, ds: float):
     """Slices of the line through the reference point x0 along t [mm], inside both working areas and
     within L of x0, cut into equal slices of about ds ending on the area boundaries (:func:`_clip`);
     None when x0 is not on both working areas. Same tuple as :func:`edge_slices` (edge code 0)."""
     ns = int(math.ceil(L / ds)) + 1
     xi = ds * np.arange(-ns, ns + 1)
-    *_, conv, margin = separation(f1, f2, par, x0[None, :] + xi[:, None] * t[None, :], phi1, phi2, gap0,
-                                  with_margin=True)
+    *_, conv, margin = separation(m, x0[None, :] + xi[:, None] * t[None, :], with_margin=True)
     if not (conv[ns] and margin[ns] <= BOUNDARY_TOL):
         return None
     lo, hi = _clip(xi, margin, conv, ns, ds)
@@ -338,7 +350,7 @@ def _line_slices(f1, f2, par, x0, t, L: float, ds: float, phi1: float, phi2: flo
     seg_len = (hi - lo) / n_sl
     xi = lo + seg_len * (np.arange(n_sl) + 0.5)
     xl = x0[None, :] + xi[:, None] * t[None, :]
-    xs, n_s, xs2, g, conv, lam = separation(f1, f2, par, xl, phi1, phi2, gap0, with_curvature=True)
+    xs, n_s, xs2, g, conv, lam = separation(m, xl, with_curvature=True)
     xs, xs2 = np.where(conv[:, None], xs, xl), np.where(conv[:, None], xs2, xl)
     return xi, xs, xs2, n_s, g, conv, np.full(len(xi), seg_len), np.zeros(len(xi), int), lam
 
@@ -418,18 +430,19 @@ def edge_slices(f1: PlacedFlank, f2: PlacedFlank, par, phi1: float, phi2: float,
     return tuple(np.concatenate([o[j] for o in out]) for j in range(9))
 
 
-def separation(f1: PlacedFlank, f2: PlacedFlank, par, x, phi1: float, phi2: float, gap0: float, tol: float = 1e-10,
-               maxit: int = 30, with_margin: bool = False, with_curvature: bool = False):
+def separation(m: Meshing, x, tol: float = 1e-10, maxit: int = 30, with_margin: bool = False,
+               with_curvature: bool = False):
     """Exact separation of two flanks along gear 1's normal at the points of gear 1's flank nearest x (S, 3).
 
-    Gear 1's flank at angle phi1, gear 2's at phi2 [rad]; ``par`` (u1, v1, u2, v2) [mm] a point near the
-    line (start of the iterations), ``gap0`` [mm] a starting separation. Foot points P1 on flank 1
+    Gear 1's flank ``m.f1`` at angle ``m.phi1``, gear 2's at ``m.phi2`` [rad]; ``m.par`` (u1, v1, u2, v2) [mm] a
+    point near the line (start of the iterations), ``m.gap0`` [mm] a starting separation. Foot points P1 on flank 1
     (:func:`tca.contact.systems.foot_points`), then the normal line P1 + s n1 meets flank 2
     at P2 (Newton on r2(u2, v2) - P1 - s n1 = 0): s is the separation [mm] (> 0 apart). Returns P1,
     n1, P2, s and the mask of points where both solves converged with both points inside their flanks'
     working areas (:func:`in_area`); ``with_margin``: also the larger of the two :func:`area_margin`;
     ``with_curvature``: also the relative curvatures λ1 <= λ2 (S, 2) [1/mm] of the two points (:func:`_curvatures`).
     """
+    f1, f2, par, phi1, phi2, gap0 = m.f1, m.f2, m.par, m.phi1, m.phi2, m.gap0
     S = len(x)
     w1, ok1, uv1 = foot_points(f1, par[:2], phi1, x, tol, maxit)
     u, v = uv1[:, 0], uv1[:, 1]

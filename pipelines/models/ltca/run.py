@@ -147,6 +147,7 @@ def solve_positions(model: LTCAModel, phis, torques, bar=None) -> tuple[list, li
                    "iterations": s.iterations}
             for name, f in zip(names, s.pair_force):
                 row[f"share.{name}"] = float(f / tot)
+            row.update({f"length_mm.{n}": float(L.length[L.pair == q].sum()) for q, n in enumerate(names)})  # K_Hα
             rows.append(row)
             for j in np.flatnonzero(s.F > 0):
                 prows.append({"phi1_deg": math.degrees(phi), "torque_nm": T * 1e-3, "pair": names[L.pair[j]],
