@@ -80,7 +80,7 @@ from tca.units import ARCSEC
 from pipelines.models.stress.loaded import Estimator, MeshLoad
 from pipelines.models.stress.sizing import (ContactSizes, HertzContact, SizeRules, contact_sizes, hertz_contact, unloaded_sizes,
                                             zone_sizes)
-from pipelines.models.stress.zones import Zone, pair_zone
+from pipelines.models.stress.zones import ZONE_SHARE, Zone, pair_zone
 
 __all__ = ["MeshContact", "mesh_contact", "contact_length", "Part", "Interface", "RigidBody", "Reaction",
            "Scene", "Placing", "TwinSetting", "pair_scene", "twin_scene", "PHASES"]
@@ -224,9 +224,11 @@ def _loaded_parts(pair: GearPair, c: MeshContact, rules: SizeRules, load: MeshLo
     ``forced``: teeth (j1, j2) of pairs the estimate left unloaded and the FE loaded (a remesh,
     :func:`pipelines.models.stress.run.run_stress`): each gets a zone like the most loaded pair's, at its own place.
 
-    Every loaded pair of teeth gets a zone (:func:`pipelines.models.stress.zones.pair_zone`): the pair in contact
-    around its TCA point, another around the point of :func:`neighbour_params`; the gears' sizes come from all
-    zones (:func:`pipelines.models.stress.sizing.zone_sizes`). A mesh the estimate leaves unloaded keeps its focus
+    Every pair of teeth carrying at least ``ZONE_SHARE`` of the mesh's force gets a zone
+    (:func:`pipelines.models.stress.zones.pair_zone`): the pair in contact around its TCA point, another around the
+    point of :func:`neighbour_params`; a more lightly loaded pair gets the neighbour mesh. The gears' sizes come from
+    the most loaded pair (:func:`pipelines.models.stress.sizing.zone_sizes`: its half-width and line), the other zones
+    are meshed alike over their own extents. A mesh the estimate leaves unloaded keeps its focus
     at the TCA point with the neighbour mesh (:func:`pipelines.models.stress.sizing.unloaded_sizes`).
     """
     g1, g2 = pair.gear1, pair.gear2
@@ -234,6 +236,8 @@ def _loaded_parts(pair: GearPair, c: MeshContact, rules: SizeRules, load: MeshLo
     by_branch = {o.k: o for o in c.others}
     zones = []
     for pl in load.pairs:
+        if pl.share < ZONE_SHARE:  # lightly loaded: the neighbour mesh (the FE's share is checked, run._warnings)
+            continue
         if pl.teeth == main_teeth:
             centre, angle = c.params, c.angle
         else:
@@ -254,8 +258,8 @@ def _loaded_parts(pair: GearPair, c: MeshContact, rules: SizeRules, load: MeshLo
     if not zones:
         sizes = (unloaded_sizes(rules, g1), unloaded_sizes(rules, g2))
         return sizes, [Focus(pair.side1, u1, v1), Focus(pair.side2, u2, v2)], [(), ()], ()
-    b_max = max(z.b for z in zones)
-    shape = tuple((max(z.b, 0.5 * b_max), z.a, z.s) for z in zones)  # a lightly loaded pair: at least half the largest b
+    top = max(zones, key=lambda z: z.share)
+    shape = ((top.b, top.a, top.s),)  # the most loaded pair's sizes; the other zones are meshed alike over their extents
     main = next((z for z in zones if z.teeth == main_teeth), None)
     sizes, foci, others = [], [], []
     for i, (g, side, (u, v)) in enumerate(((g1, pair.side1, (u1, v1)), (g2, pair.side2, (u2, v2)))):

@@ -29,7 +29,9 @@ from tca.pair.gear_pair import GearPair
 
 from pipelines.models.stress.loaded import PairLoad
 
-__all__ = ["Zone", "pair_zone"]
+__all__ = ["Zone", "pair_zone", "ZONE_SHARE"]
+
+ZONE_SHARE = 0.1  # a loaded pair carrying less of its mesh's force gets the neighbour mesh, no zone (issue 26)
 
 
 @dataclass(frozen=True)
