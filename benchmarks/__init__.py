@@ -32,6 +32,7 @@ AREAS = {
     "end_relief": ("benchmarks.end_relief", {}),
     "ltca": ("benchmarks.ltca", {}),
     "peer": ("benchmarks.peer", {}),
+    "sizing": ("benchmarks.sizing", {}),
 }
 
 

@@ -51,12 +51,11 @@ def test_coarse_neighbours_miss_the_sharing(tmp_path):
     assert s["position"]["refined_neighbours"] == []
 
 
-@pytest.mark.parametrize("sizing", ["loaded", "tca"])
-def test_a_pair_within_reach_is_meshed_like_the_loaded_one(tmp_path, sizing):
-    """The next pair (5.2 arcsec behind) gets its own refined zone — the loaded estimate loads it (``sizing =
-    "loaded"``), or it is within the default reach of the unloaded TCA (``"tca"``) — so even coarse neighbouring
-    flanks elsewhere share the load as the finest meshes do (0.545, module docstring)."""
-    s = run_stress(case_at(-5.71, neighbour_size_mm=3.0, sizing=sizing), tmp_path / "focus").summary
+def test_a_pair_within_reach_is_meshed_like_the_loaded_one(tmp_path):
+    """The next pair (5.2 arcsec behind) gets its own refined zone — the loaded estimate loads it (the default
+    ``sizing = "loaded"``; with ``"tca"`` it is within the default reach of the unloaded TCA) — so even coarse
+    neighbouring flanks elsewhere share the load as the finest meshes do (0.545, module docstring)."""
+    s = run_stress(case_at(-5.71, neighbour_size_mm=3.0), tmp_path / "focus").summary
     nxt, cur, _ = next_pair_share(s)
     assert [n["pair"] for n in s["position"]["refined_neighbours"]][:1] == [[1, 1]]
     assert nxt == pytest.approx(0.545, abs=0.05)
