@@ -52,6 +52,21 @@ line, 2a, from the edge point (:func:`pipelines.models.stress.sizing.contact_siz
 the edge rule there: with line zones its conventional design (edge contacts at the face ends) grows
 from 79k to 458k DOF at refine 0.3, one tooth, and the torque balance its tests pin moves from
 3.8e-4 to 9.7e-4 (nominal) and 4.7e-4 to 1.06e-3 (kinematic): a change to review with that model.
+
+Sizing by the loaded estimate (``[mesh] sizing = "loaded"``, the default; issue 26). The sizes above put the
+whole load on the unloaded TCA's contact point and mesh every neighbouring pair within reach like it. With the
+estimator (:mod:`pipelines.models.stress.loaded`: the loaded TCA of each mesh at the scene's position on a coarse
+flank grid, the twin's planet torque split between its members through the rigid planet) each mesh instead gets a
+zone per pair of teeth that carries at least ``ZONE_SHARE`` (0.1) of its force
+(:func:`pipelines.models.stress.zones.pair_zone`: extents covering the pair's loaded slices, each slice's Hertz
+half-width :math:`b_i = p_i/\kappa_i` across the line); the part's profile and axial sizes are those of the most
+loaded pair, :math:`b/3` (:math:`b/4` for a line contact) and :math:`\min(a/6,\ b/(3|\sin\theta|))` with
+:math:`b` its half-width at its largest pressure and :math:`a` its loaded line's half-length
+(:func:`pipelines.models.stress.sizing.zone_sizes`). A pair below the share, or a mesh the estimate leaves
+unloaded (a twin member with backlash), gets the neighbour mesh; the run flags a pair without a zone that the FE
+loads beyond the share (:func:`pipelines.models.stress.run.unzoned_loads`) and, with ``[mesh] remesh = true``,
+remeshes once with a zone there. Where the estimate fails the scene falls back to the sizes above and says so
+(``position.loaded_estimate``).
 """
 
 from __future__ import annotations
@@ -250,8 +265,11 @@ def _loaded_parts(pair: GearPair, c: MeshContact, rules: SizeRules, load: MeshLo
     if zones:
         ref = max(zones, key=lambda z: z.share)
         for teeth in forced:
-            o = next((o for o in c.others if ((-o.k) % g1.teeth, (-o.k) % g2.teeth) == tuple(teeth)), None)
-            centre = neighbour_params(pair, c, o, math.inf) if o is not None else None
+            if tuple(teeth) == main_teeth:  # the pair in contact: at its TCA point
+                centre = c.params
+            else:
+                o = next((o for o in c.others if ((-o.k) % g1.teeth, (-o.k) % g2.teeth) == tuple(teeth)), None)
+                centre = neighbour_params(pair, c, o, math.inf) if o is not None else None
             if centre is not None and all(z.teeth != tuple(teeth) for z in zones):
                 zones.append(replace(ref, teeth=tuple(teeth), centre=tuple(centre), share=0.0))
     u1, v1, u2, v2 = c.params
