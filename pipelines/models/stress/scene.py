@@ -63,7 +63,9 @@ half-width :math:`b_i = p_i/\kappa_i` across the line); the part's profile and a
 loaded pair, :math:`b/3` (:math:`b/4` for a line contact) and :math:`\min(a/6,\ b/(3|\sin\theta|))` with
 :math:`b` its half-width at its largest pressure and :math:`a` its loaded line's half-length
 (:func:`pipelines.models.stress.sizing.zone_sizes`). A pair below the share, or a mesh the estimate leaves
-unloaded (a twin member with backlash), gets the neighbour mesh; the run flags a pair without a zone that the FE
+unloaded (a twin member with backlash), gets the neighbour mesh; where no pair but the zoned ones is within the
+estimate's reach (``EstimateGrid.reach``, 50 µm of separation), by the estimate and by the unloaded TCA, the other
+teeth's flanks are left coarse; the run flags a pair without a zone that the FE
 loads beyond the share (:func:`pipelines.models.stress.run.unzoned_loads`) and, with ``[mesh] remesh = true``,
 remeshes once with a zone there. Where the estimate fails the scene falls back to the sizes above and says so
 (``position.loaded_estimate``).
@@ -92,7 +94,7 @@ from tca.planetary.subgear import member_pose, subgear_pairs
 from tca.numerics.transforms import rot_x, rot_z
 from tca.units import ARCSEC
 
-from pipelines.models.stress.loaded import Estimator, MeshLoad
+from pipelines.models.stress.loaded import EstimateGrid, Estimator, MeshLoad
 from pipelines.models.stress.sizing import (ContactSizes, HertzContact, SizeRules, contact_sizes, hertz_contact, unloaded_sizes,
                                             zone_sizes)
 from pipelines.models.stress.zones import ZONE_SHARE, Zone, pair_zone
@@ -287,7 +289,16 @@ def _loaded_parts(pair: GearPair, c: MeshContact, rules: SizeRules, load: MeshLo
         others.append(tuple((z.teeth[i], Focus(side, z.centre[2 * i], z.centre[2 * i + 1], *z.extents[i]))
                             for z in zones if z.teeth != main_teeth))
     fine = {k: min(getattr(sizes[0], k), getattr(sizes[1], k)) for k in ("contact", "axial")}
-    return (replace(sizes[0], **fine), replace(sizes[1], **fine)), foci, others, tuple(zones)
+    sizes = [replace(sz, **fine) for sz in sizes]
+    zoned = {z.teeth for z in zones}
+    if set(load.in_reach) <= zoned and c.next_gap > EstimateGrid.reach and all(
+            o.gap > EstimateGrid.reach or o.kind == ContactKind.NONE for o in c.others
+            if ((-o.k) % g1.teeth, (-o.k) % g2.teeth) not in zoned):
+        # no other pair within the estimate's reach (50 um, several elastic approaches), by the estimate or by the
+        # unloaded TCA (kind NONE: a tangency of the extended surfaces, whose gap is only a lower bound, is left to
+        # the estimate's working areas): the other teeth's flanks cannot close under load, no neighbour mesh (issue 26)
+        sizes = [replace(sz, neighbour=sz.coarse) for sz in sizes]
+    return tuple(sizes), foci, others, tuple(zones)
 
 
 def _slice_centre(pair: GearPair, pl) -> tuple:
