@@ -312,7 +312,7 @@ def run_stress(case: StressCase, out: Path, progress=None) -> StressRun:
         forced = {k: tuple(t for t, _ in rows) for k, rows in found.items()}
         say("mesh: remeshing with zones on " + ", ".join(f"{k[0]} {k[1]} {t}" for k, v in forced.items() for t in v))
         first = {"dofs": s["dofs"], "pairs": {f"{k[0]}/{k[1]}": [[list(t), sh] for t, sh in v] for k, v in found.items()},
-                 "mesh_s": t_mesh, "solve_s": t_solve}
+                 "warnings": _unzoned_warnings(found), "mesh_s": t_mesh, "solve_s": t_solve}
         scene, _, _ = _build(case, None, forced)
         mesh, r, model, attempts, (t_mesh, t_solve) = _mesh_and_solve(case, scene, say)
         t_mesh, t_solve = t_mesh + first["mesh_s"], t_solve + first["solve_s"]
