@@ -47,7 +47,7 @@ def _kinds(*ks: CaseKind) -> Mapping[str, CaseKind]:
 
 
 _TCA = "pipelines.cases.validate"
-_RATE = "pipelines.cases.rating"  # gearfe rate: ISO 6336 of the case's [rating]
+_RATE = "pipelines.cases.rate"  # gearfe rate: ISO 6336 of the case's [rating]
 KINDS: Mapping[str, CaseKind] = _kinds(
     CaseKind("pair", "a gear pair: gears, driver and driven, centre distance, misalignment, TCA resolution",
              {"tca": f"{_TCA}:read_pair_tca", "rate": f"{_RATE}:read_pair_rate"}, analysis="pipelines.analyses.pair"),

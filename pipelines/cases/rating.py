@@ -55,7 +55,7 @@ from tca.rating.rating import rate
 from pipelines.cases.schema import Table
 
 __all__ = ["RatingSpec", "MeshRating", "read_rating", "with_rating", "rated_meshes", "check_rating", "train_names",
-           "GIVEN_RANGES", "RateJob", "read_pair_rate", "read_planetary_rate", "read_stress_rate"]
+           "GIVEN_RANGES", "train_meshes"]
 
 # user-given factors: case key -> (RatingCase field, range ISO allows)
 GIVEN_RANGES = {"k_gamma": (1.0, 3.0), "k_v": (1.0, 5.0), "k_h_beta": (1.0, 10.0), "k_h_alpha": (1.0, 5.0)}
@@ -183,7 +183,7 @@ def train_names(train: DoubleHelicalTrain) -> tuple[str, ...]:
     return (train.sun.name, train.planet.name, train.ring.name)
 
 
-def _train_meshes(train: DoubleHelicalTrain, spec: RatingSpec, ring_torque: float,
+def train_meshes(train: DoubleHelicalTrain, spec: RatingSpec, ring_torque: float,
                   elastic) -> list[MeshRating]:
     r"""Sun-planet and planet-ring meshes of one member of a Part 1 train (carrier at rest, as the twin model).
 
@@ -219,7 +219,7 @@ def rated_meshes(record) -> list[MeshRating]:
     if record.model == "pair":
         return [MeshRating("pair", record.pair, rating_case(record.pair, spec.gears, spec.service,
                                                              spec.load(record.torque, "driven"), elastic))]
-    return _train_meshes(record.train, spec, record.torque, elastic)
+    return train_meshes(record.train, spec, record.torque, elastic)
 
 
 def check_rating(meshes: list[MeshRating]) -> None:
@@ -245,65 +245,3 @@ def with_rating(case: Table, record):
     out = replace(record, rating=read_rating(t, names))
     check_rating(rated_meshes(out))
     return out
-
-
-@dataclass(frozen=True)
-class RateJob:
-    """What ``gearfe rate`` rates: the case's title and kind, and its meshes."""
-
-    title: str
-    kind: str
-    meshes: tuple[MeshRating, ...]
-
-
-def _need(t: Table) -> None:
-    if not t.has("rating"):
-        raise InputError("rating", None, "a [rating] table (speed, life, lubricant, material per gear: docs/cases.md)",
-                         "gearfe rate needs it")
-
-
-def read_pair_rate(t: Table) -> RateJob:
-    """``gearfe rate`` of a ``kind = "pair"`` case: the pair and its ``[rating]`` (with a torque of its own)."""
-    from pipelines.cases.reader import read_gears, read_pair, read_tca_options
-
-    _need(t)
-    t.get("kind", str)
-    title = t.get("title", str, "")
-    pair, _, _ = read_pair(t, read_gears(t))
-    read_tca_options(t.table("tca", required=False))
-    spec = read_rating(t.table("rating"), (pair.gear1.name, pair.gear2.name), case_has_torque=False)
-    t.done()
-    meshes = [MeshRating("pair", pair, rating_case(pair, spec.gears, spec.service, spec.load()))]
-    check_rating(meshes)
-    return RateJob(title, "pair", tuple(meshes))
-
-
-def read_planetary_rate(t: Table) -> RateJob:
-    """``gearfe rate`` of a ``kind = "planetary"`` case (Part 1 train); ``[rating]`` gives the ring's torque."""
-    from pipelines.cases.planetary import read_installment, read_regulation_options, read_train
-    from pipelines.cases.reader import read_tca_options
-
-    _need(t)
-    t.get("kind", str)
-    title = t.get("title", str, "")
-    train = read_train(t)
-    read_installment(t.table("installment", required=False), train.planets)
-    read_regulation_options(t.table("regulation", required=False))
-    read_tca_options(t.table("tca", required=False))
-    spec = read_rating(t.table("rating"), train_names(train), case_has_torque=False)
-    t.done()
-    if spec.torque_of != "driven":
-        raise InputError("rating.driver_torque_nm", spec.torque * 1e-3, "driven_torque_nm: the ring's torque (carrier "
-                         "at rest) in a planetary case")
-    meshes = _train_meshes(train, spec, spec.torque, None)
-    check_rating(meshes)
-    return RateJob(title, "planetary", tuple(meshes))
-
-
-def read_stress_rate(t: Table) -> RateJob:
-    """``gearfe rate`` of a ``kind = "stress"`` case: its pair or twin train at the case's torque."""
-    from pipelines.cases.stress import read_stress_case
-
-    _need(t)
-    rec = read_stress_case(t)
-    return RateJob(rec.title, "stress", tuple(rated_meshes(rec)))
