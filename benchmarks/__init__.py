@@ -33,6 +33,7 @@ AREAS = {
     "ltca": ("benchmarks.ltca", {}),
     "peer": ("benchmarks.peer", {}),
     "trains": ("benchmarks.trains", {}),
+    "sizing": ("benchmarks.sizing", {}),
 }
 
 

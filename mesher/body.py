@@ -40,7 +40,8 @@ from mesher.quality import check_quality
 from mesher.topology import SectionTopology
 from mesher.tooth import BLOCKS, SIDES, ToothGeometry, ToothPlan
 
-__all__ = ["MeshOptions", "Focus", "plan_tooth", "mesh_gear", "model_teeth"]
+__all__ = ["MeshOptions", "Focus", "plan_tooth", "mesh_gear", "model_teeth", "plan_gear", "build_gear", "GearPlan",
+           "MemberPlan"]
 
 
 @dataclass(frozen=True)
@@ -211,12 +212,56 @@ def model_teeth(gear: Gear, n: int, centre: int = 0) -> list[int]:
     return [int((first + i) % gear.teeth) for i in range(n)]
 
 
-def _member(geom: ToothGeometry, teeth: list[int], plans: list[ToothPlan], z: np.ndarray, rim_frac: np.ndarray,
-            offset: float):
+@dataclass(frozen=True, eq=False)
+class MemberPlan:
+    """The element distributions of one member before any node is placed: axial levels ``z`` [mm] (member
+    frame), the rim fractions, one :class:`ToothPlan` per modelled tooth and the section topology they make."""
+
+    geom: ToothGeometry
+    offset: float  # axial offset of the member [mm]
+    z: np.ndarray
+    rim_frac: np.ndarray
+    plans: tuple
+    topology: SectionTopology
+    info: dict
+
+    @property
+    def cells(self) -> int:
+        """Hexahedra of the member: one layer of section quads per pair of axial levels."""
+        return (len(self.z) - 1) * len(self.topology.quads)
+
+    @property
+    def nodes(self) -> int:
+        return len(self.z) * self.topology.n_nodes
+
+
+@dataclass(frozen=True, eq=False)
+class GearPlan:
+    """Everything :func:`mesh_gear` decides before it places a node (:func:`plan_gear`): the element counts of the
+    mesh it will build, exactly, at the cost of the size fields alone."""
+
+    gear: Gear
+    body: str
+    teeth: list
+    centre_index: int  # position of the loaded tooth in ``teeth``
+    sizes: dict
+    focus: Focus | None
+    members: tuple  # MemberPlan of member a (and b)
+
+    @property
+    def cells(self) -> int:
+        return sum(m.cells for m in self.members)
+
+    @property
+    def nodes(self) -> int:
+        return sum(m.nodes for m in self.members)
+
+
+def _member(plan: MemberPlan, teeth: list[int]):
     """Nodes, cells and named face sets of one member (gear frame, axial offset added)."""
+    geom, plans, z, rim_frac, offset, topo = plan.geom, plan.plans, plan.z, plan.rim_frac, plan.offset, plan.topology
     g = geom.gear
     closed = len(teeth) == g.teeth
-    topo = SectionTopology.build(plans, len(rim_frac) - 1, closed)
     nz = len(z)
     pos = np.empty((nz, topo.n_nodes, 3))
     blocks_by_plan = {}
@@ -275,20 +320,10 @@ def _member(geom: ToothGeometry, teeth: list[int], plans: list[ToothPlan], z: np
     return pts, cells, faces, topo
 
 
-def mesh_gear(gear: Gear, opts: MeshOptions = MeshOptions(), centre: int = 0, focus: Focus | None = None,
-              name: str | None = None, member_offset: float | None = None, check: bool = True,
-              others: tuple = ()) -> HexMesh:
-    """Hexahedral model of `opts.teeth` teeth of a gear centred on tooth `centre`, in the gear frame.
-
-    `focus` (reference-tooth parameters) grades the mesh around the contact point of tooth `centre`.
-    `others`: ``(tooth, Focus)`` of further loaded teeth (neighbouring pairs that close under load),
-    graded like tooth `centre` around their own contact points; the axial levels, common to all teeth,
-    are graded around every focus (the smallest of the size fields, :class:`mesher.grading.MinField`).
-    Teeth not in the model are ignored. Needs `focus`.
-    With ``opts.gap`` set the gear is double-helical: member a (this gear) at axial offset
-    `member_offset` (default +(B + F)/2) and its mirror member b at the opposite offset.
-    With `check` (default) an element with det J <= 0 at a Gauss point raises a GeometryError.
-    """
+def plan_gear(gear: Gear, opts: MeshOptions = MeshOptions(), centre: int = 0, focus: Focus | None = None,
+              name: str | None = None, member_offset: float | None = None, others: tuple = ()) -> GearPlan:
+    """The element distributions of :func:`mesh_gear` with the same arguments, without placing a node: its
+    ``cells`` and ``nodes`` are those of the mesh (a resource estimate that is exact)."""
     body = name or gear.name
     sz = opts.sizes(gear)
     teeth = model_teeth(gear, opts.teeth, centre)
@@ -304,11 +339,10 @@ def mesh_gear(gear: Gear, opts: MeshOptions = MeshOptions(), centre: int = 0, fo
         mirror = None if focus is None else replace(focus, z=-focus.z)
         members = [(gear, c, focus, extra),
                    (replace(gear, hand=-gear.hand, name=gear.name), -c, mirror, [(j, replace(f, z=-f.z)) for j, f in extra])]
-    pts_all, cells_all, faces_all = [], [], {}
-    n0 = c0 = 0
-    info = []
+    closed = len(teeth) == gear.teeth
     clamp = lambda z: min(max(z, -0.5 * B), 0.5 * B)  # noqa: E731
-    for mi, (gm, off, fc, ex) in enumerate(members):
+    out = []
+    for gm, off, fc, ex in members:
         geom = ToothGeometry(gm, sz["rim"])
         z_ref = 0.0 if fc is None else clamp(fc.z)
         if fc is None:
@@ -341,7 +375,41 @@ def mesh_gear(gear: Gear, opts: MeshOptions = MeshOptions(), centre: int = 0, fo
             plans[ci] = plan_tooth(geom, sz, z_ref, fc, label="loaded")
         for j, f in ex:
             plans[teeth.index(j)] = plan_tooth(geom, sz, clamp(f.z), f, label="loaded")
-        pts, cells, faces, topo = _member(geom, teeth, plans, z, rim_frac, off)
+        topo = SectionTopology.build(plans, len(rim_frac) - 1, closed)
+        info = {"offset_mm": off, "hand": gm.hand, "levels": len(z), "section_nodes": topo.n_nodes,
+                "loaded_plan": {"flank": plans[ci].n_flank, "fillet_root": plans[ci].n_fillet_root,
+                                "half_pos": plans[ci].n_half(1), "half_neg": plans[ci].n_half(-1)},
+                "rim": len(rim_frac) - 1}
+        out.append(MemberPlan(geom, off, z, rim_frac, tuple(plans), topo, info))
+    return GearPlan(gear, body, teeth, ci, sz, focus, tuple(out))
+
+
+def mesh_gear(gear: Gear, opts: MeshOptions = MeshOptions(), centre: int = 0, focus: Focus | None = None,
+              name: str | None = None, member_offset: float | None = None, check: bool = True,
+              others: tuple = ()) -> HexMesh:
+    """Hexahedral model of `opts.teeth` teeth of a gear centred on tooth `centre`, in the gear frame.
+
+    `focus` (reference-tooth parameters) grades the mesh around the contact point of tooth `centre`.
+    `others`: ``(tooth, Focus)`` of further loaded teeth (neighbouring pairs that close under load),
+    graded like tooth `centre` around their own contact points; the axial levels, common to all teeth,
+    are graded around every focus (the smallest of the size fields, :class:`mesher.grading.MinField`).
+    Teeth not in the model are ignored. Needs `focus`.
+    With ``opts.gap`` set the gear is double-helical: member a (this gear) at axial offset
+    `member_offset` (default +(B + F)/2) and its mirror member b at the opposite offset.
+    With `check` (default) an element with det J <= 0 at a Gauss point raises a GeometryError.
+    The element distributions are :func:`plan_gear`'s (its counts are this mesh's).
+    """
+    plan = plan_gear(gear, opts, centre, focus, name, member_offset, others)
+    return build_gear(plan, check)
+
+
+def build_gear(plan: GearPlan, check: bool = True) -> HexMesh:
+    """The hexahedral model of a :class:`GearPlan` (:func:`mesh_gear`)."""
+    gear, body, teeth, ci, sz, focus = plan.gear, plan.body, plan.teeth, plan.centre_index, plan.sizes, plan.focus
+    pts_all, cells_all, faces_all = [], [], {}
+    n0 = c0 = 0
+    for mp in plan.members:
+        pts, cells, faces, _ = _member(mp, teeth)
         pts_all.append(pts)
         cells_all.append(cells + n0)
         for k, v in faces.items():
@@ -349,10 +417,7 @@ def mesh_gear(gear: Gear, opts: MeshOptions = MeshOptions(), centre: int = 0, fo
             faces_all[k] = np.concatenate([faces_all[k], v]) if k in faces_all else v
         n0 += len(pts)
         c0 += len(cells)
-        info.append({"offset_mm": off, "hand": gm.hand, "levels": len(z), "section_nodes": topo.n_nodes,
-                     "loaded_plan": {"flank": plans[ci].n_flank, "fillet_root": plans[ci].n_fillet_root,
-                                     "half_pos": plans[ci].n_half(1), "half_neg": plans[ci].n_half(-1)},
-                     "rim": len(rim_frac) - 1})
+    info = [mp.info for mp in plan.members]
     pts = np.concatenate(pts_all)
     cells = np.concatenate(cells_all)
     fsets = {f"{body}/{k}": v for k, v in faces_all.items()}

@@ -17,7 +17,7 @@ from pipelines.cases.rating import with_rating
 from pipelines.models.stress.case import MODELS, StressCase
 from pipelines.models.stress.model import FESettings
 from pipelines.models.stress.scene import PHASES
-from pipelines.models.stress.sizing import SizeRules
+from pipelines.models.stress.sizing import SIZING, SizeRules
 
 __all__ = ["read_stress_case"]
 
@@ -41,6 +41,8 @@ def _read_mesh(t: Table | None) -> SizeRules:
         growth=t.get("growth", float, 1.3, lo=1.05, hi=3.0),
         zone=t.get("zone", float, 1.2, lo=0.0, hi=5.0),
         neighbour_reach=_um(t.get("neighbour_reach_um", float, None, lo=0.0, hi=1000.0)),
+        sizing=t.get("sizing", str, "loaded", choices=SIZING),
+        remesh=t.get("remesh", bool, False),
     )
     t.done()
     return r

@@ -14,32 +14,29 @@ The solver keeps as contact candidates the slave nodes whose initial gap is belo
 ``search_gap``; it checks afterwards that no other node penetrates, and when one does the solve
 is repeated with the search gap doubled (up to ``max_search_gap``).
 
-Resource estimate (before meshing, :func:`estimate_resources`). A part's structured hexahedral
-mesh is a tensor product: axial layers times a transverse section. Along the face width
-:math:`F`, graded from the axial contact size :math:`h_a` (over a zone of half-length :math:`e_z`)
-to the coarse size :math:`c` with growth :math:`q`, the layers are
+Resource estimate (before meshing, :func:`estimate_resources`). Every part's element distributions are
+planned by the mesher itself (:func:`mesher.body.plan_gear`: the axial levels and the tooth plans of
+:func:`mesher.mesh_gear`, the section topology, no node placed; about 40 ms a part), so the element
+and node counts before meshing are those of the mesh that is built (issue 26: the fitted formula it
+replaces, :func:`part_elements`, was 2-3 times low where a zone covers a helical contact line across
+the whole flank — ``stress_helical_pair.toml`` at refine 0.5: 474k DOF estimated, 1.35M meshed — and
+a run was killed by the kernel instead of refused; :func:`part_elements` remains the quick estimate
+of ``gearfe mesh``). Peak memory of the sparse direct solve (PARDISO measured on a hexahedral box:
+0.54 GB at 53k DOF, 8.2 GB at 499k DOF): :math:`M = 0.54\,(\mathrm{DOF}/53\,000)^{1.21}` GB. A model
+whose estimate exceeds the limit (``GEARFE_MAX_MEMORY_GB``, default 80 % of the machine's physical
+memory) is refused before meshing with an :class:`~tca.errors.InputError` naming the ``[mesh]`` key
+that made it large; the meshed model is checked again before the solve (:func:`check_resources` with
+``mesh``).
+
+:func:`part_elements` (``gearfe mesh``): a part's structured mesh is axial layers times a transverse
+section; along the face width :math:`F`, graded from the axial contact size :math:`h_a` (over a zone
+of half-length :math:`e_z`) to the coarse size :math:`c` with growth :math:`q`,
 
 .. math::  n_z = \min\Big(F/h_a,\; 2e_z/h_a + 2\ln(c/h_a)/\ln q + F/c\Big),
 
 and the section of :math:`T` teeth, in sizes relative to the module (:math:`\bar c = c/m`,
-:math:`\bar h = h_c/m`, :math:`h_c` the contact size) is
-:math:`n_s = 155 + 33.7\,\bar c^{-2} + 7.5\,\bar h^{-1} + 37.6\,(T-1)\,\bar c^{-2}` (the coarse
-area of the loaded tooth and its rim, the grading towards the contact point, the other teeth),
-so :math:`N = n_z n_s`. With further foci (neighbouring pairs meshed like the loaded one,
-:mod:`pipelines.models.stress.scene`) :math:`n_z` grows by the ratio of :math:`\int dz/h(z)` over the face
-for the smallest of the zones' size fields :math:`h_a + (q-1)\max(|z-z_i|-e_i, 0)` (capped at
-:math:`c`) to the same for the first zone alone, and each further zone adds a grading term
-:math:`7.5\,\bar h^{-1}` to the section. The four coefficients are a least-squares fit to 20 real part meshes
-(Table 1.1 sun and planet, refine 0.5-3, one, three and five teeth, contact sizes 0.015-0.16 mm):
-within -7 % / +15 % of the mesher's counts (``make bench``, area ``reliability``, checks it).
-DOF = 3 x 1.15 N (nodes per element of these meshes). Peak memory of the
-sparse direct solve (PARDISO measured on a hexahedral box: 0.54 GB at 53k DOF, 8.2 GB at 499k DOF):
-:math:`M = 0.54\,(\mathrm{DOF}/53\,000)^{1.21}` GB. A model whose estimate exceeds the limit
-(``GEARFE_MAX_MEMORY_GB``, default 80 % of the machine's physical memory) is refused with an
-:class:`~tca.errors.InputError` naming the ``[mesh]`` key that made it large; so is a meshed model
-whose real DOF exceed it (:func:`check_resources` with ``mesh``, before the solve: the section
-term above models a zone around a point, and a zone that covers a helical contact line across the
-whole flank makes 2-3 times more elements).
+:math:`\bar h = h_c/m`) is :math:`n_s = 155 + 33.7\,\bar c^{-2} + 7.5\,\bar h^{-1} + 37.6\,(T-1)\,\bar c^{-2}`
+(a least-squares fit to 20 real part meshes), so :math:`N = n_z n_s`.
 """
 
 from __future__ import annotations
@@ -54,6 +51,7 @@ from dataclasses import dataclass
 from fem import STEEL, Body, ContactOptions, ContactPair, FEModel, Fixed, Material, Rigid, SolverOptions, solve
 from fem.result import FEResult
 from mesher import MeshOptions, join_parts, mesh_gear, merge_meshes
+from mesher.body import plan_gear
 from fem.mesh.hexmesh import HexMesh
 from fem.errors import FEConvergenceError
 from tca.errors import InputError
@@ -61,7 +59,7 @@ from tca.errors import InputError
 from pipelines.models.stress.scene import Interface, Scene
 
 __all__ = ["FESettings", "mesh_scene", "fe_model", "solve_scene", "pair_name", "ResourceEstimate",
-           "estimate_resources", "check_resources", "memory_limit_gb", "part_elements"]
+           "estimate_resources", "check_resources", "memory_limit_gb", "part_elements", "part_options"]
 
 ELEMENTS = {"C3D8I": "hex8i", "C3D8": "hex8"}
 
@@ -144,15 +142,18 @@ def part_elements(gear, sizes: dict, teeth: int, extent_z: float = 0.0, zones: t
     return nz * (a + b / cbar**2 + (1 + extra) * c_ / hbar + d * (teeth - 1) / cbar**2)
 
 
-def estimate_resources(scene: Scene) -> ResourceEstimate:
-    """Element, DOF and memory estimate of the scene's model from its size rules (no meshing)."""
-    def zones(p):  # the scene puts further foci only on modelled teeth (pipelines.models.stress.scene.pair_scene)
-        fs = [p.focus] + [f for _, f in p.others]
-        return tuple((f.z, f.extent_z) for f in fs) if len(fs) > 1 else ()
+def part_options(p) -> MeshOptions:
+    """The mesher's options of a scene part (its sizes)."""
+    s = p.sizes
+    return MeshOptions(teeth=s.teeth, rim_depth=s.rim, coarse_size=s.coarse, contact_size=s.contact, fillet_size=s.fillet,
+                       growth=s.growth, axial_contact_size=s.axial, neighbour_size=s.neighbour)
 
-    n = sum(part_elements(p.gear, dataclasses.asdict(p.sizes), p.sizes.teeth, getattr(p.focus, "extent_z", 0.0),
-                          zones(p)) for p in scene.parts)
-    return _resources(n, 3.0 * _NODES_PER_ELEMENT * n)
+
+def estimate_resources(scene: Scene) -> ResourceEstimate:
+    """Element, DOF and memory estimate of the scene's model before meshing: the mesher's own plan of every part
+    (:func:`mesher.body.plan_gear`: its element distributions without the nodes, exact counts in ~40 ms a part)."""
+    plans = [plan_gear(p.gear, part_options(p), centre=p.centre, focus=p.focus, others=p.others) for p in scene.parts]
+    return _resources(sum(q.cells for q in plans), 3 * sum(q.nodes for q in plans))
 
 
 def _resources(elements: float, dofs: float) -> ResourceEstimate:
@@ -213,11 +214,7 @@ def mesh_scene(scene: Scene) -> HexMesh:
     """All parts meshed, placed and joined into the scene's bodies (one mesh)."""
     bodies: dict[str, list] = {}
     for p in scene.parts:
-        s = p.sizes
-        opts = MeshOptions(teeth=s.teeth, rim_depth=s.rim, coarse_size=s.coarse, contact_size=s.contact,
-                           fillet_size=s.fillet, growth=s.growth, axial_contact_size=s.axial,
-                           neighbour_size=s.neighbour)
-        m = mesh_gear(p.gear, opts, centre=p.centre, focus=p.focus, others=p.others).transformed(p.R, p.t)
+        m = mesh_gear(p.gear, part_options(p), centre=p.centre, focus=p.focus, others=p.others).transformed(p.R, p.t)
         bodies.setdefault(p.body, []).append((p, m))
     refs = {b: rb.ref for b, rb in scene.rigid.items()}
     meshes = []

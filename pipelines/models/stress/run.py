@@ -51,7 +51,13 @@ Case file (TOML, ``kind = "stress"``)::
     teeth = 3                     # teeth per gear part
     # coarse_size_mm, contact_size_mm, axial_contact_size_mm, fillet_size_mm, neighbour_size_mm, rim_depth_mm,
     # growth, zone: override the defaults of pipelines.models.stress.scene (Hertz-based contact sizes)
-    # neighbour_reach_um: pair model: neighbouring pairs closer than this (TCA) are meshed like the loaded
+    sizing = "loaded"             # zones from the loaded estimate at the position (pipelines.models.stress.loaded,
+                                  # issue 26): a zone per pair carrying >= 0.1 of its mesh's force, sized from its
+                                  # loaded contact; "tca": from the unloaded TCA (the whole load at the TCA point,
+                                  # and every pair within neighbour_reach_um meshed like it: the models before issue 26)
+    remesh = false                # true: when the FE loads a pair without a zone beyond 0.1 of its mesh's force
+                                  # (a summary warning either way), remesh once with a zone there
+    # neighbour_reach_um: sizing = "tca": neighbouring pairs closer than this (TCA) are meshed like the loaded
     # one (default 3 P / (c' b), pipelines.models.stress.sizing.SizeRules.reach; 0: none)
     [fe]
     element = "C3D8I"             # or "C3D8"
@@ -87,11 +93,13 @@ from tca.planetary.regulation import RegulationOptions, nominal_peak, regulate_m
 
 from pipelines.jsonio import plain
 from pipelines.models.stress.case import StressCase
-from pipelines.models.stress.model import check_resources, mesh_scene, solve_scene
+from pipelines.models.stress.loaded import EstimateGrid, Estimator
+from pipelines.models.stress.model import ELEMENTS, check_resources, mesh_scene, solve_scene
 from pipelines.models.stress.results import member_teeth, summarize
 from pipelines.models.stress.scene import Scene, TwinSetting, pair_scene, twin_scene
+from pipelines.models.stress.zones import ZONE_SHARE
 
-__all__ = ["StressRun", "run_stress", "build_scene"]
+__all__ = ["StressRun", "run_stress", "build_scene", "estimator", "unzoned_loads"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -130,13 +138,21 @@ def build_scene(case: StressCase, progress=None):
     return scene, rec
 
 
-def _build(case: StressCase, progress=None):
+def estimator(case: StressCase, forced: dict | None = None) -> Estimator | None:
+    """The loaded estimate of a case's scene (``[mesh] sizing = "loaded"``, the default), or None (``"tca"``)."""
+    if case.mesh.sizing != "loaded":
+        return None
+    return Estimator(EstimateGrid(), case.fe.material, ELEMENTS[case.fe.element], case.fe.solver, case.mesh.teeth, forced)
+
+
+def _build(case: StressCase, progress=None, forced: dict | None = None):
     """:func:`build_scene` and the TCA result (PairTCAResult, or TwinTE of the twin drive)."""
     mat = case.fe.material
+    est = estimator(case, forced)
     if case.model == "pair":
         r = run_pair_tca(case.pair, case.tca)
         phi1 = position_angle(r, case.position, case.phi1, case.roll)
-        scene = pair_scene(case.pair, r, phi1, case.torque, case.mesh, mat)
+        scene = pair_scene(case.pair, r, phi1, case.torque, case.mesh, mat, est)
         rec = {"te_peak_to_peak_arcsec": r.te_peak_to_peak_arcsec, "edge_contact": r.edge_contact,
                "elapsed_s": r.elapsed}
         return scene, rec, r
@@ -147,7 +163,8 @@ def _build(case: StressCase, progress=None):
     grid = phi1_grid(case.train, case.tca)
     subs = {k: run_subgear_tca(case.train, 0, k, case.errors, dz[0 if k == "a" else 1], case.tca, np.array([phi1]), cache)
             for k in ("a", "b")}
-    scene = twin_scene(case.train, subs, TwinSetting(case.errors, dz, case.member_phase), phi1, case.torque, case.mesh, mat)
+    scene = twin_scene(case.train, subs, TwinSetting(case.errors, dz, case.member_phase), phi1, case.torque, case.mesh, mat,
+                       est)
     rec = {"twin_te_peak_to_peak_arcsec": float(np.ptp(tw.te) / ARCSEC), "twin_te_max_arcsec": float(tw.te.max() / ARCSEC),
            "edge_contact": bool(tw.members["a"].edge_contact or tw.members["b"].edge_contact),
            "phi1_grid_deg": [math.degrees(grid[0]), math.degrees(grid[-1])], "regulation": reg,
@@ -172,6 +189,32 @@ def _warnings(scene, approach: float, interfaces: dict) -> list[str]:
                        "actual approach is smaller than that gap, or its flanks are meshed too coarsely to close "
                        "(check with a smaller [mesh] neighbour_size_mm)")
     return out
+
+
+def unzoned_loads(scene: Scene, interfaces: dict) -> dict:
+    """(interface, member) -> ((driver tooth, driven tooth), share) of the pairs of teeth that the FE loads with more
+    than ``ZONE_SHARE`` of their mesh's force although the loaded estimate gave them no zone (the neighbour mesh:
+    their force is right, their peak pressure is not resolved). Meshes sized by the unloaded TCA are not checked."""
+    out = {}
+    for itf in scene.interfaces:
+        if itf.load is None:
+            continue
+        total = interfaces[itf.name]["members"][itf.member]["force_n"]
+        zoned = {z.teeth for z in itf.zones}
+        teeth = {off: (j1, j2) for off, j1, j2 in itf.tooth_pairs()}
+        for row in member_teeth(itf, interfaces):
+            t = teeth.get(row["offset"])
+            share = row["force_n"] / total if total > 0 else 0.0
+            if t is not None and t not in zoned and share > ZONE_SHARE:
+                out.setdefault((itf.name, itf.member), []).append((t, share))
+    return out
+
+
+def _unzoned_warnings(found: dict) -> list[str]:
+    return [f"{name} {member}: the FE loads teeth {t[0]}-{t[1]} with {share:.2f} of the mesh's force but the loaded "
+            f"estimate gave them no refined zone (neighbour mesh: force right, peak pressure not resolved); "
+            "[mesh] remesh = true remeshes once with a zone there"
+            for (name, member), rows in found.items() for t, share in rows]
 
 
 TORQUE_BALANCE_LIMIT = 1e-2  # relative error of the reaction torque above which the result is flagged
@@ -224,6 +267,24 @@ def _iso6336(case: StressCase) -> dict:
             "iso6336_sigma_h0_mpa": rec["contact"].get("sigma_h0"), "iso6336": rec}
 
 
+def _mesh_and_solve(case: StressCase, scene: Scene, say):
+    """Resource check, mesh and contact solve of a scene: mesh, FE result, model, search-gap attempts, (mesh, solve) [s]."""
+    est = check_resources(scene, case.mesh)  # refuses a model beyond the memory limit, before meshing
+    say(f"mesh: estimated {est.elements} elements, {est.dofs} DOF, {est.memory_gb:.2g} GB")
+    t1 = time.perf_counter()
+    mesh = mesh_scene(scene)
+    t_mesh = time.perf_counter() - t1
+    say(f"mesh: {len(scene.parts)} parts, {mesh.n_cells} elements, {3 * mesh.n_points} DOF in {t_mesh:.1f} s")
+    check_resources(scene, case.mesh, mesh=mesh)  # the real size, before the solve
+    t1 = time.perf_counter()
+    say("solve: contact FE (" + case.fe.element + ")")
+    r, model, attempts = solve_scene(scene, mesh, case.fe, say)
+    t_solve = time.perf_counter() - t1
+    say(f"solve: {r.info.active} active contact nodes of {r.info.candidates} candidates, "
+        f"{r.info.iterations} active-set iterations, {t_solve:.1f} s")
+    return mesh, r, model, attempts, (t_mesh, t_solve)
+
+
 def run_stress(case: StressCase, out: Path, progress=None) -> StressRun:
     """TCA, mesh, contact solve and results of a case; writes ``out/result.vtu``; the summary and its objects.
 
@@ -242,28 +303,31 @@ def run_stress(case: StressCase, out: Path, progress=None) -> StressRun:
     t_tca = time.perf_counter() - t0
     pos = scene.info
     say(f"tca: done in {t_tca:.1f} s (phi1 = {pos['phi1_deg']:.4f} deg)")
-    est = check_resources(scene, case.mesh)  # refuses a model beyond the memory limit, before meshing
-    say(f"mesh: estimated {est.elements} elements, {est.dofs} DOF, {est.memory_gb:.2g} GB")
-    t1 = time.perf_counter()
-    mesh = mesh_scene(scene)
-    t_mesh = time.perf_counter() - t1
-    say(f"mesh: {len(scene.parts)} parts, {mesh.n_cells} elements, {3 * mesh.n_points} DOF in {t_mesh:.1f} s")
-    check_resources(scene, case.mesh, mesh=mesh)  # the real size, before the solve
-    t1 = time.perf_counter()
-    say("solve: contact FE (" + case.fe.element + ")")
-    r, model, attempts = solve_scene(scene, mesh, case.fe, say)
-    t_solve = time.perf_counter() - t1
-    say(f"solve: {r.info.active} active contact nodes of {r.info.candidates} candidates, "
-        f"{r.info.iterations} active-set iterations, {t_solve:.1f} s")
+    mesh, r, model, attempts, (t_mesh, t_solve) = _mesh_and_solve(case, scene, say)
     t1 = time.perf_counter()
     s = summarize(scene, mesh, model, r)
+    found = unzoned_loads(scene, s["interfaces"])
+    remeshed = None
+    if found and case.mesh.remesh:  # once: a zone on every pair the FE loaded beyond the estimate
+        forced = {k: tuple(t for t, _ in rows) for k, rows in found.items()}
+        say("mesh: remeshing with zones on " + ", ".join(f"{k[0]} {k[1]} {t}" for k, v in forced.items() for t in v))
+        first = {"dofs": s["dofs"], "pairs": {f"{k[0]}/{k[1]}": [[list(t), sh] for t, sh in v] for k, v in found.items()},
+                 "warnings": _unzoned_warnings(found), "mesh_s": t_mesh, "solve_s": t_solve}
+        scene, _, _ = _build(case, None, forced)
+        mesh, r, model, attempts, (t_mesh, t_solve) = _mesh_and_solve(case, scene, say)
+        t_mesh, t_solve = t_mesh + first["mesh_s"], t_solve + first["solve_s"]
+        s = summarize(scene, mesh, model, r)
+        found, remeshed = unzoned_loads(scene, s["interfaces"]), first
+        pos = scene.info
+    pos = {**pos, "remeshed": remeshed}
     out.mkdir(parents=True, exist_ok=True)
     r.write_vtu(out / "result.vtu")
     t_res = time.perf_counter() - t1
     say(f"results: max von Mises {s['max_von_mises_mpa']:.1f} MPa, max contact pressure {s['max_contact_pressure_mpa']:.1f} MPa, "
         f"torque balance error {s['torque_balance_error']:.2e}")
     iso = _iso6336(case)
-    warnings = _warnings(scene, case.tca.elastic_approach, s["interfaces"]) + plausibility_warnings(case, s)
+    warnings = (_warnings(scene, case.tca.elastic_approach, s["interfaces"]) + _unzoned_warnings(found)
+                + plausibility_warnings(case, s))
     for w in warnings:
         say("warning: " + w)
     summary = {

@@ -52,6 +52,23 @@ line, 2a, from the edge point (:func:`pipelines.models.stress.sizing.contact_siz
 the edge rule there: with line zones its conventional design (edge contacts at the face ends) grows
 from 79k to 458k DOF at refine 0.3, one tooth, and the torque balance its tests pin moves from
 3.8e-4 to 9.7e-4 (nominal) and 4.7e-4 to 1.06e-3 (kinematic): a change to review with that model.
+
+Sizing by the loaded estimate (``[mesh] sizing = "loaded"``, the default; issue 26). The sizes above put the
+whole load on the unloaded TCA's contact point and mesh every neighbouring pair within reach like it. With the
+estimator (:mod:`pipelines.models.stress.loaded`: the loaded TCA of each mesh at the scene's position on a coarse
+flank grid, the twin's planet torque split between its members through the rigid planet) each mesh instead gets a
+zone per pair of teeth that carries at least ``ZONE_SHARE`` (0.1) of its force
+(:func:`pipelines.models.stress.zones.pair_zone`: extents covering the pair's loaded slices, each slice's Hertz
+half-width :math:`b_i = p_i/\kappa_i` across the line); the part's profile and axial sizes are those of the most
+loaded pair, :math:`b/3` (:math:`b/4` for a line contact) and :math:`\min(a/6,\ b/(3|\sin\theta|))` with
+:math:`b` its half-width at its largest pressure and :math:`a` its loaded line's half-length
+(:func:`pipelines.models.stress.sizing.zone_sizes`). A pair below the share, or a mesh the estimate leaves
+unloaded (a twin member with backlash), gets the neighbour mesh; where no pair but the zoned ones is within the
+estimate's reach (``EstimateGrid.reach``, 50 µm of separation), by the estimate and by the unloaded TCA, the other
+teeth's flanks are left coarse; the run flags a pair without a zone that the FE
+loads beyond the share (:func:`pipelines.models.stress.run.unzoned_loads`) and, with ``[mesh] remesh = true``,
+remeshes once with a zone there. Where the estimate fails the scene falls back to the sizes above and says so
+(``position.loaded_estimate``).
 """
 
 from __future__ import annotations
@@ -66,18 +83,21 @@ from mesher import Focus, ReferencePoint
 from mesher.body import model_teeth
 from mesher.placement import IDENTITY, Pose, gear_pose, loaded_tooth
 from fem.material import Material
-from tca.errors import InputError
+from tca.errors import GearfeError, InputError
 from tca.geometry.gear import Gear
 from tca.pair.gear_pair import GearPair
 from tca.pair.analysis import ContactKind, PairTCAResult
 from tca.planetary.train import DoubleHelicalTrain, ShaftErrors
-from tca.pair.te import MeshContact, mesh_contact
+from tca.pair.te import MeshContact, MeshTE, mesh_contact
 from tca.contact.systems import PlacedFlank, foot_points
 from tca.planetary.subgear import member_pose, subgear_pairs
 from tca.numerics.transforms import rot_x, rot_z
 from tca.units import ARCSEC
 
-from pipelines.models.stress.sizing import ContactSizes, HertzContact, SizeRules, contact_sizes, hertz_contact
+from pipelines.models.stress.loaded import EstimateGrid, Estimator, MeshLoad
+from pipelines.models.stress.sizing import (ContactSizes, HertzContact, SizeRules, contact_sizes, hertz_contact, unloaded_sizes,
+                                            zone_sizes)
+from pipelines.models.stress.zones import ZONE_SHARE, Zone, pair_zone
 
 __all__ = ["MeshContact", "mesh_contact", "contact_length", "Part", "Interface", "RigidBody", "Reaction",
            "Scene", "Placing", "TwinSetting", "pair_scene", "twin_scene", "PHASES"]
@@ -124,6 +144,8 @@ class Interface:
     normal: np.ndarray  # unit normal out of the driver's tooth in S_f
     hertz: HertzContact
     slave: str  # 'driver' or 'driven'
+    load: MeshLoad | None = None  # the loaded estimate of this mesh (None: sized by the unloaded TCA)
+    zones: tuple = ()  # Zone of every loaded pair of teeth (loaded estimate)
 
     def tooth_pairs(self) -> list[tuple[int, int, int]]:
         """(offset q, driver tooth, driven tooth): equal offsets from the loaded pair meet."""
@@ -183,26 +205,112 @@ class Placing:
     inclined_lines: bool = False  # size a helical line contact as a line whatever its TCA kind (sizing.contact_sizes)
 
 
-def _interface(at: Placing, pair: GearPair, c: MeshContact, torque: float, rules: SizeRules, mat: Material) -> Interface:
-    """Driver and driven parts of one mesh at its contact, with Hertz-based sizes (placed by mesher.placement)."""
+def _interface(at: Placing, pair: GearPair, c: MeshContact, torque: float, rules: SizeRules, mat: Material,
+               load: MeshLoad | None = None, forced: tuple = ()) -> Interface:
+    """Driver and driven parts of one mesh at its contact (placed by mesher.placement), sized by the loaded estimate
+    ``load`` of the mesh (:func:`_loaded_parts`) or, without it, by Hertz's contact of the whole load at the TCA point."""
     hz = hertz_contact(c.curvature, _load(pair, c, torque), mat, contact_length(pair))
     g1, g2 = pair.gear1, pair.gear2
     m1, m2 = pair.mounts()
-    s1 = contact_sizes(rules, g1, hz, c.angle, c.kind, at.inclined_lines)
-    s2 = contact_sizes(rules, g2, hz, c.angle, c.kind, at.inclined_lines)
-    # both flanks get the finer of the two size sets (master and slave equally fine at the contact)
-    fine = {k: min(getattr(s1, k), getattr(s2, k)) for k in ("contact", "axial")}
-    s1, s2 = replace(s1, **fine), replace(s2, **fine)
     u1, v1, u2, v2 = c.params
+    zones = ()
+    if load is None:
+        s1 = contact_sizes(rules, g1, hz, c.angle, c.kind, at.inclined_lines)
+        s2 = contact_sizes(rules, g2, hz, c.angle, c.kind, at.inclined_lines)
+        # both flanks get the finer of the two size sets (master and slave equally fine at the contact)
+        fine = {k: min(getattr(s1, k), getattr(s2, k)) for k in ("contact", "axial")}
+        s1, s2 = replace(s1, **fine), replace(s2, **fine)
+        foci = [Focus(pair.side1, u1, v1, s1.extent_u, s1.extent_z), Focus(pair.side2, u2, v2, s2.extent_u, s2.extent_z)]
+        others = [(), ()]
+    else:
+        (s1, s2), foci, others, zones = _loaded_parts(pair, c, rules, load, hz.line, forced)
     parts = []
-    for i, (g, mount, side, u, v, phi, sz) in enumerate(((g1, m1, pair.side1, u1, v1, c.phi1, s1),
-                                                         (g2, m2, pair.side2, u2, v2, c.phi2, s2))):
+    for i, (g, mount, phi, sz) in enumerate(((g1, m1, c.phi1, s1), (g2, m2, c.phi2, s2))):
         pose = gear_pose(mount, phi, at.frame)
-        parts.append(Part(at.bodies[i], at.labels[i], g, loaded_tooth(g, c.k), Focus(side, u, v, sz.extent_u, sz.extent_z),
-                          replace(sz, teeth=rules.teeth), pose.R, pose.t))
+        parts.append(Part(at.bodies[i], at.labels[i], g, loaded_tooth(g, c.k), foci[i], replace(sz, teeth=rules.teeth),
+                          pose.R, pose.t, others[i]))
     point = at.frame.R @ c.point + at.frame.t
     normal = at.frame.R @ c.normal
-    return Interface(at.name, at.member, parts[0], parts[1], pair.side1, pair.side2, c, point, normal, hz, at.slave)
+    return Interface(at.name, at.member, parts[0], parts[1], pair.side1, pair.side2, c, point, normal, hz, at.slave,
+                     load, zones)
+
+
+def _loaded_parts(pair: GearPair, c: MeshContact, rules: SizeRules, load: MeshLoad, line: bool, forced: tuple = ()):
+    """Sizes, main foci, further foci and zones of both gears of a mesh from its loaded estimate.
+
+    ``forced``: teeth (j1, j2) of pairs the estimate left unloaded and the FE loaded (a remesh,
+    :func:`pipelines.models.stress.run.run_stress`): each gets a zone like the most loaded pair's, at its own place.
+
+    Every pair of teeth carrying at least ``ZONE_SHARE`` of the mesh's force gets a zone
+    (:func:`pipelines.models.stress.zones.pair_zone`): the pair in contact around its TCA point, another around the
+    point of :func:`neighbour_params`; a more lightly loaded pair gets the neighbour mesh. The gears' sizes come from
+    the most loaded pair (:func:`pipelines.models.stress.sizing.zone_sizes`: its half-width and line), the other zones
+    are meshed alike over their own extents. A mesh the estimate leaves unloaded keeps its focus
+    at the TCA point with the neighbour mesh (:func:`pipelines.models.stress.sizing.unloaded_sizes`).
+    """
+    g1, g2 = pair.gear1, pair.gear2
+    main_teeth = (loaded_tooth(g1, c.k), loaded_tooth(g2, c.k))
+    by_branch = {o.k: o for o in c.others}
+    zones = []
+    for pl in load.pairs:
+        if pl.share < ZONE_SHARE:  # lightly loaded: the neighbour mesh (the FE's share is checked, run._warnings)
+            continue
+        if pl.teeth == main_teeth:
+            centre, angle = c.params, c.angle
+        else:
+            o = by_branch.get(pl.branch)
+            centre = neighbour_params(pair, c, o, math.inf) if o is not None else None
+            if centre is None:
+                centre = _slice_centre(pair, pl)
+            angle = c.angle
+        zones.append(pair_zone(pair, pl, centre, rules.zone, angle))
+    if zones:
+        ref = max(zones, key=lambda z: z.share)
+        for teeth in forced:
+            if tuple(teeth) == main_teeth:  # the pair in contact: at its TCA point
+                centre = c.params
+            else:
+                o = next((o for o in c.others if ((-o.k) % g1.teeth, (-o.k) % g2.teeth) == tuple(teeth)), None)
+                centre = neighbour_params(pair, c, o, math.inf) if o is not None else None
+            if centre is not None and all(z.teeth != tuple(teeth) for z in zones):
+                zones.append(replace(ref, teeth=tuple(teeth), centre=tuple(centre), share=0.0))
+    u1, v1, u2, v2 = c.params
+    if not zones:
+        sizes = (unloaded_sizes(rules, g1), unloaded_sizes(rules, g2))
+        return sizes, [Focus(pair.side1, u1, v1), Focus(pair.side2, u2, v2)], [(), ()], ()
+    top = max(zones, key=lambda z: z.share)
+    shape = ((top.b, top.a, top.s),)  # the most loaded pair's sizes; the other zones are meshed alike over their extents
+    main = next((z for z in zones if z.teeth == main_teeth), None)
+    sizes, foci, others = [], [], []
+    for i, (g, side, (u, v)) in enumerate(((g1, pair.side1, (u1, v1)), (g2, pair.side2, (u2, v2)))):
+        eu, ez = main.extents[i] if main is not None else (0.0, 0.0)
+        sizes.append(zone_sizes(rules, g, line, shape, eu, ez))
+        foci.append(Focus(side, u, v, eu, ez))
+        others.append(tuple((z.teeth[i], Focus(side, z.centre[2 * i], z.centre[2 * i + 1], *z.extents[i]))
+                            for z in zones if z.teeth != main_teeth))
+    fine = {k: min(getattr(sizes[0], k), getattr(sizes[1], k)) for k in ("contact", "axial")}
+    sizes = [replace(sz, **fine) for sz in sizes]
+    zoned = {z.teeth for z in zones}
+    if set(load.in_reach) <= zoned and c.next_gap > EstimateGrid.reach and all(
+            o.gap > EstimateGrid.reach or o.kind == ContactKind.NONE for o in c.others
+            if ((-o.k) % g1.teeth, (-o.k) % g2.teeth) not in zoned):
+        # no other pair within the estimate's reach (50 um, several elastic approaches), by the estimate or by the
+        # unloaded TCA (kind NONE: a tangency of the extended surfaces, whose gap is only a lower bound, is left to
+        # the estimate's working areas): the other teeth's flanks cannot close under load, no neighbour mesh (issue 26)
+        sizes = [replace(sz, neighbour=sz.coarse) for sz in sizes]
+    return tuple(sizes), foci, others, tuple(zones)
+
+
+def _slice_centre(pair: GearPair, pl) -> tuple:
+    """(u1, v1, u2, v2) [mm] of the loaded slice nearest the force-weighted centre of a pair's slices."""
+    m1, m2 = pair.mounts()
+    x = pl.points[int(np.argmin(np.linalg.norm(pl.points - pl.points.mean(0), axis=1)))][None, :]
+    out = []
+    for i, f in enumerate((PlacedFlank(pair.gear1, pair.side1, m1), PlacedFlank(pair.gear2, pair.side2, m2))):
+        area = f.gear.area(f.side)
+        _, _, uv = foot_points(f, (0.5 * (area.u_form + area.u_tip), 0.0), pl.phi[i], x)
+        out += [float(uv[0, 0]), float(uv[0, 1])]
+    return tuple(out)
 
 
 def contact_length(pair: GearPair) -> float:
@@ -261,15 +369,29 @@ def neighbour_params(pair: GearPair, c: MeshContact, o, extent: float) -> tuple 
 
 
 def pair_scene(pair: GearPair, result: PairTCAResult, phi1: float, torque: float, rules: SizeRules,
-               mat: Material) -> Scene:
-    """Driver fixed, driven gear rigid (rotation free, torque -T about its axis) at driver angle phi1 [rad]."""
+               mat: Material, estimator: Estimator | None = None) -> Scene:
+    """Driver fixed, driven gear rigid (rotation free, torque -T about its axis) at driver angle phi1 [rad].
+
+    With an ``estimator`` (``[mesh] sizing = "loaded"``) the zones come from the loaded estimate of the mesh
+    (:mod:`pipelines.models.stress.loaded`); without it, or where the estimate fails (said in ``info``), from the
+    unloaded TCA: the whole load at the TCA point, and every pair within ``rules.reach`` meshed like it."""
     c = mesh_contact(result, phi1)
     g1, g2 = pair.gear1, pair.gear2
-    itf = _interface(Placing(f"{g1.name}-{g2.name}", "a", (g1.name, g2.name), inclined_lines=True), pair, c, torque, rules, mat)
+    at = Placing(f"{g1.name}-{g2.name}", "a", (g1.name, g2.name), inclined_lines=True)
+    load, failed = None, None
+    if estimator is not None:
+        try:
+            lines = estimator.lines(pair, MeshTE.from_result(result), phi1, c.params)
+            load = estimator.load(pair, lines, torque)
+        except GearfeError as exc:  # the unloaded TCA's sizes, and the summary says why
+            failed = str(exc)
+    itf = _interface(at, pair, c, torque, rules, mat, load, estimator.forced.get((at.name, at.member), ()) if estimator else ())
     reach = rules.reach(_load(pair, c, torque), min(g1.face_width, g2.face_width))
-    modelled = set(itf.driver.teeth), set(itf.driven.teeth)
-    near = [o for o in c.others if o.gap <= reach and (-o.k) % g1.teeth in modelled[0]
-            and (-o.k) % g2.teeth in modelled[1]] if reach > 0 else []
+    near = []
+    if load is None:
+        modelled = set(itf.driver.teeth), set(itf.driven.teeth)
+        near = [o for o in c.others if o.gap <= reach and (-o.k) % g1.teeth in modelled[0]
+                and (-o.k) % g2.teeth in modelled[1]] if reach > 0 else []
     if near:  # neighbouring pairs that may close under load: refined around their own contact points
         fd, fn = itf.driver.focus, itf.driven.focus
         pars = [neighbour_params(pair, c, o, max(fd.extent_u, fn.extent_u)) for o in near]
@@ -279,18 +401,65 @@ def pair_scene(pair: GearPair, result: PairTCAResult, phi1: float, torque: float
         itf = replace(itf, driver=d, driven=n)
     m1, m2 = pair.mounts()
     ratio = g1.teeth / g2.teeth
+    gaps = {((-o.k) % g1.teeth, (-o.k) % g2.teeth): o for o in c.others}
+    refined = ([{"pair": [(-o.k) % g1.teeth, (-o.k) % g2.teeth], "gap_um": o.gap * 1e3, "kind": _kind_name(o.kind)} for o in near]
+               if load is None else
+               [{"pair": list(z.teeth), "gap_um": gaps[z.teeth].gap * 1e3 if z.teeth in gaps else None,
+                 "kind": _kind_name(gaps[z.teeth].kind) if z.teeth in gaps else None, "share": z.share}
+                for z in itf.zones if z.teeth != (itf.driver.centre, itf.driven.centre)])
     info = {"phi1_deg": math.degrees(phi1), "phi2_deg": math.degrees(c.phi2), "te_arcsec": c.te / ARCSEC,
             "active_pair": c.k, "kind": _kind_name(c.kind), "on_tca_grid": c.exact,
             "instantaneous_ratio": c.ratio, "te_slope": c.slope, "next_pair_gap_um": c.next_gap * 1e3,
             "loaded_teeth": {g1.name: itf.driver.centre, g2.name: itf.driven.centre},
-            "neighbour_reach_um": reach * 1e3,
-            "refined_neighbours": [{"pair": [(-o.k) % g1.teeth, (-o.k) % g2.teeth], "gap_um": o.gap * 1e3,
-                                    "kind": _kind_name(o.kind)} for o in near]}
+            "neighbour_reach_um": reach * 1e3, "refined_neighbours": refined,
+            "loaded_estimate": _estimate_record(estimator, (itf,), failed)}
     return Scene("pair", (itf.driver, itf.driven), (itf,), g1.name,
                  {g2.name: RigidBody(ReferencePoint(tuple(m2.origin), tuple(m2.axis)), -abs(torque))},
                  Reaction(g1.name, tuple(m1.origin), tuple(m1.axis), abs(torque) * ratio), ratio, info)
 
 
+def _twin_loads(estimator: Estimator, train: DoubleHelicalTrain, subs: dict, pairs: dict, per: dict, at: tuple,
+                own12: dict) -> dict:
+    """(interface, member) -> MeshLoad of the four meshes of a twin drive (module docstring of
+    :mod:`pipelines.models.stress.loaded`). ``at``: sun angle in the pair frame, the ring's angle (of the leading
+    member), the planet torque and the ring torque [N mm]; ``own12``: each member's sun contact at its own planet angle."""
+    ph1, phi3_lead, T_planet, T_ring = at
+    N2 = train.planet.teeth
+    mirror = {"a": (None, None, None), "b": train.gears("a")}
+    L12, L23, g12, g23 = {}, {}, {}, {}
+    for k in ("a", "b"):
+        p1, p2 = pairs[k]
+        c12, c23, _ = per[k]
+        sun, planet, ring = mirror[k]
+        L12[k] = estimator.lines(p1, subs[k].mesh12, ph1, c12.params, (sun, planet))
+        L23[k] = estimator.lines(p2, subs[k].mesh23, c12.phi2 + math.pi + math.pi / N2, c23.params, (planet, ring))
+        g12[k] = max(c12.phi2 - own12[k].phi2, 0.0)  # planet angle to turn back before member k touches the sun
+        g23[k] = max(phi3_lead - c23.phi2, 0.0)  # ring angle to turn back before member k touches the ring
+    t12 = estimator.split((L12["a"], L12["b"]), (g12["a"], g12["b"]), T_planet)
+    t23 = estimator.split((L23["a"], L23["b"]), (g23["a"], g23["b"]), T_ring)
+    out = {}
+    for i, k in enumerate(("a", "b")):
+        p1, p2 = pairs[k]
+        out[("sun-planet", k)] = estimator.load(p1, L12[k], t12[i], g12[k])
+        out[("planet-ring", k)] = estimator.load(p2, L23[k], t23[i], g23[k])
+    return out
+
+
+def _estimate_record(estimator: Estimator | None, itfs: tuple, failed: str | None) -> dict:
+    """The summary's record of the loaded estimate: mode, grid and costs, per mesh its loads and zones."""
+    if estimator is None:
+        return {"sizing": "tca"}
+    rec = {"sizing": "loaded" if failed is None else "tca", **estimator.record()}
+    if failed is not None:
+        rec["failed"] = failed
+        return rec
+    rec["meshes"] = {f"{i.name}/{i.member}": {**i.load.as_json(),
+                                               "zones": [{"pair": list(z.teeth), "share": z.share, "half_width_mm": z.b,
+                                                          "line_half_length_mm": z.a,
+                                                          "extents_mm": [list(e) for e in z.extents]} for z in i.zones],
+                                               "forced": [list(t) for t in estimator.forced.get((i.name, i.member), ())]}
+                     for i in itfs}
+    return rec
 
 
 PHASES = ("assembled", "nominal")
@@ -307,8 +476,12 @@ class TwinSetting:
 
 
 def twin_scene(train: DoubleHelicalTrain, subs: dict, setting: TwinSetting, phi1: float, torque: float,
-               rules: SizeRules, mat: Material) -> Scene:
+               rules: SizeRules, mat: Material, estimator: Estimator | None = None) -> Scene:
     """Twin subgear drive of shaft 1 at sun angle phi1 [rad]: sun fixed, twin planet and ring rigid (module docstring).
+
+    With an ``estimator`` the four meshes are sized by their loaded estimates, the planet torque split between the
+    members through the rigid planet (:mod:`pipelines.models.stress.loaded`); without it, or where the estimate
+    fails, every mesh is sized for the whole torque of its interface at its TCA point.
 
     ``subs``: member -> :class:`tca.planetary.subgear.SubgearTE` of shaft 1 (its meshes are used).
     ``setting.phase``: 'assembled' — each member turned on the shaft so that it touches the sun at phi1
@@ -347,6 +520,13 @@ def twin_scene(train: DoubleHelicalTrain, subs: dict, setting: TwinSetting, phi1
     phi3_lead = per[lead][1].phi2
     parts, itfs = [], []
     T_planet = abs(torque) * N2 / N3  # torque through the sun mesh if one member carried all
+    loads, failed = {}, None
+    if estimator is not None:
+        try:
+            loads = _twin_loads(estimator, train, subs, pairs, per, (ph1, phi3_lead, T_planet, abs(torque)),
+                                {k: mesh_contact(subs[k].mesh12.result, ph1) for k in ("a", "b")})
+        except GearfeError as exc:
+            loads, failed = {}, str(exc)
     members = {}
     r2, r3 = train.planet.r_p, train.ring.r_p
     for k in ("a", "b"):
@@ -357,11 +537,13 @@ def twin_scene(train: DoubleHelicalTrain, subs: dict, setting: TwinSetting, phi1
         F1 = Pose(A1.T, A1.T @ np.array([0.0, 0.0, zk]))
         c_nom = np.array([E_c * math.cos(th), E_c * math.sin(th), zk])
         F2 = Pose(A2.T, c_nom)
+        forced = estimator.forced if estimator is not None else {}
         s_itf = _interface(Placing("sun-planet", k, ("sun", "planet"), (k, f"{k}_sun"), "driven", F1), p1, c12, T_planet,
-                           rules, mat)
+                           rules, mat, loads.get(("sun-planet", k)), forced.get(("sun-planet", k), ()))
         # the ring turns with the member that leads: the other member keeps its backlash at the ring
         r_itf = _interface(Placing("planet-ring", k, ("planet", "ring"), (f"{k}_ring", k), "driver", F2), p2,
-                           replace(c23, phi2=phi3_lead), abs(torque), rules, mat)
+                           replace(c23, phi2=phi3_lead), abs(torque), rules, mat, loads.get(("planet-ring", k)),
+                           forced.get(("planet-ring", k), ()))
         itfs += [s_itf, r_itf]
         parts += [s_itf.driver, s_itf.driven, r_itf.driver, r_itf.driven]
         members[k] = {"te3_arcsec": te3 / ARCSEC, "te12_arcsec": own12.te / ARCSEC, "te23_arcsec": c23.te / ARCSEC,
@@ -384,7 +566,8 @@ def twin_scene(train: DoubleHelicalTrain, subs: dict, setting: TwinSetting, phi1
     ratio = N1 / N3
     info = {"phi1_deg": math.degrees(phi1), "te3_arcsec": per[lead][2] / ARCSEC, "leading_member": lead, "member_phase": phase,
             "ring_angle_deg": math.degrees(phi3_lead), "members": members, "shaft": i + 1,
-            "d_ex_um": errors.d_ex * 1e3, "d_gamma_arcmin": math.degrees(errors.d_gamma) * 60}
+            "d_ex_um": errors.d_ex * 1e3, "d_gamma_arcmin": math.degrees(errors.d_gamma) * 60,
+            "loaded_estimate": _estimate_record(estimator, tuple(itfs), failed)}
     return Scene("twin", tuple(parts), tuple(itfs), "sun",
                  {"planet": RigidBody(planet_ref, 0.0), "ring": RigidBody(ring_ref, -abs(torque))},
                  Reaction("sun", (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), abs(torque) * ratio), ratio, info)

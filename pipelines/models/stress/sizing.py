@@ -2,6 +2,7 @@ r"""Element sizes of the loaded flanks from Hertz's contact (the formulas are in
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -13,7 +14,8 @@ from tca.errors import GeometryError, InputError
 from tca.geometry.gear import Gear
 from tca.pair.analysis import ContactKind
 
-__all__ = ["HertzContact", "hertz_contact", "SizeRules", "ContactSizes", "contact_sizes", "NEIGHBOUR"]
+__all__ = ["HertzContact", "hertz_contact", "SizeRules", "ContactSizes", "contact_sizes", "zone_sizes", "unloaded_sizes",
+           "NEIGHBOUR", "SIZING"]
 
 # ---------------------------------------------------------------------------------------------- Hertz and sizes
 @dataclass(frozen=True)
@@ -85,6 +87,8 @@ NEIGHBOUR = 0.1  # default profile size on the other teeth's loaded flanks [modu
 
 C_PRIME = 14.0  # [N/(mm um)] single stiffness of a solid spur pair, ISO 6336-1 (order of magnitude of c')
 
+SIZING = ("loaded", "tca")  # zones sized by the loaded estimate (pipelines.models.stress.loaded) or the unloaded TCA
+
 
 @dataclass(frozen=True)
 class SizeRules:
@@ -109,6 +113,8 @@ class SizeRules:
     growth: float = 1.3
     zone: float = 1.2
     neighbour_reach: float | None = None  # [mm] neighbouring pairs closer than this (TCA) get a focus; None: reach()
+    sizing: str = "loaded"  # 'loaded': zones from the loaded estimate; 'tca': from the unloaded TCA (before issue 26)
+    remesh: bool = False  # remesh once when the FE loads a pair the estimate left unloaded (pipelines.models.stress.run)
 
     def __post_init__(self):
         if not (0.1 <= self.refine <= 10.0):
@@ -125,6 +131,10 @@ class SizeRules:
             raise InputError("mesh.zone", self.zone, "in [0, 5] (zone half-lengths over the Hertz ellipse's)")
         if self.neighbour_reach is not None and not (0.0 <= self.neighbour_reach <= 1.0):
             raise InputError("mesh.neighbour_reach_um", self.neighbour_reach * 1e3, "in [0, 1000] um")
+        if self.sizing not in SIZING:
+            raise InputError("mesh.sizing", self.sizing, "one of " + ", ".join(repr(x) for x in SIZING))
+        if not isinstance(self.remesh, bool):
+            raise InputError("mesh.remesh", self.remesh, "true or false")
 
     def reach(self, load: float, face_width: float) -> float:
         r"""Separation [mm] below which a neighbouring pair of teeth is meshed like the loaded one.
@@ -165,8 +175,7 @@ def contact_sizes(rules: SizeRules, gear: Gear, hz: HertzContact, angle: float, 
     helical gear it covers the inclined line, (B/2) tan β_b + b either side of the point along the profile.
     ``inclined_lines`` (the pair model): a helical line contact whose TCA contact is an edge is sized so too.
     """
-    m, r = gear.module, rules.refine
-    coarse = (rules.coarse if rules.coarse is not None else 0.75 * m) / r
+    m = gear.module
     a, b = hz.a, hz.b
     s, c = abs(math.sin(angle)), abs(math.cos(angle))
     if hz.line:  # the contact line of an involute helicoid: inclined by the base helix angle across the flank
@@ -189,14 +198,50 @@ def contact_sizes(rules: SizeRules, gear: Gear, hz: HertzContact, angle: float, 
         axial = min(a / 6.0, b / (3.0 * s) if s > 1e-12 else math.inf)
     else:
         axial = 2.0 * contact
+    half = 2.0 * a if inclined_edge else a  # half-length of the zone along the line
+    ext_u = rules.zone * (half * s + b * c) if surface else rules.zone * b
+    ext_z = rules.zone * (half * c + b * s) if surface else 0.0
+    return _sizes(rules, m, contact, axial, ext_u, ext_z)
+
+
+def _coarse(rules: SizeRules, m: float) -> float:
+    return (rules.coarse if rules.coarse is not None else 0.75 * m) / rules.refine
+
+
+def _sizes(rules: SizeRules, m: float, contact: float, axial: float, ext_u: float, ext_z: float) -> ContactSizes:
+    """The sizes of a part from its contact and axial sizes at refine 1 [mm] and its zone (not refined) [mm]."""
+    r = rules.refine
+    coarse = _coarse(rules, m)
     contact = min(max(contact, 0.005 * m), coarse * r) / r
     axial = min(max(axial, contact * r), coarse * r) / r
     fillet = min((rules.fillet if rules.fillet is not None else 0.1 * m) / r, coarse)
     # a resolution of the flank geometry (facet sag against the elastic approach), not of a stress gradient:
     # coarser models (refine < 1) keep it, finer ones refine it too
     neighbour = min((rules.neighbour if rules.neighbour is not None else NEIGHBOUR * m) / max(r, 1.0), coarse)
-    half = 2.0 * a if inclined_edge else a  # half-length of the zone along the line
-    ext_u = rules.zone * (half * s + b * c) if surface else rules.zone * b
-    ext_z = rules.zone * (half * c + b * s) if surface else 0.0
     return ContactSizes(coarse, contact, axial, fillet, neighbour, rules.rim_depth if rules.rim_depth is not None else 3.0 * m,
                         rules.growth, ext_u, ext_z, rules.teeth)
+
+
+def zone_sizes(rules: SizeRules, gear: Gear, line: bool, zones: tuple, ext_u: float, ext_z: float) -> ContactSizes:
+    """Sizes of a part whose zones come from the loaded estimate (:mod:`pipelines.models.stress.loaded`).
+
+    ``zones``: (b, a, s) of every loaded pair of teeth: the Hertz half-width b [mm] of its loaded contact, the
+    half-length a [mm] of its loaded line and the sine s of the line's angle from the axis. The part's profile size
+    is the smallest b/3 (b/4 for a line contact), its axial size the smallest min(a/6, b/(3 s)) (one size per part:
+    the mesher grades every zone of it alike); ``ext_u``, ``ext_z`` [mm]: the main zone's half-lengths (over its
+    loaded slices, times ``rules.zone``: :mod:`pipelines.models.stress.zones`)."""
+    b = min(z[0] for z in zones)
+    contact = rules.contact if rules.contact is not None else b / (4.0 if line else 3.0)
+    axial = rules.axial if rules.axial is not None else min(
+        min(a / 6.0, bb / (3.0 * s) if s > 1e-12 else math.inf) for bb, a, s in zones)
+    return _sizes(rules, gear.module, contact, axial, ext_u, ext_z)
+
+
+def unloaded_sizes(rules: SizeRules, gear: Gear) -> ContactSizes:
+    """Sizes of a part whose mesh the loaded estimate leaves unloaded (a twin member with backlash): its loaded
+    tooth's flank at the neighbour size (so that the FE can still close it), no zone, the rest coarse."""
+    m, r = gear.module, rules.refine
+    coarse = _coarse(rules, m)
+    nb = min((rules.neighbour if rules.neighbour is not None else NEIGHBOUR * m) / max(r, 1.0), coarse)
+    sz = _sizes(rules, m, nb * r, coarse * r, 0.0, 0.0)
+    return dataclasses.replace(sz, contact=nb, axial=coarse, fillet=coarse)

@@ -158,8 +158,10 @@ def test_new_design_shares_the_load_between_members_without_edge_contact(new_des
     # to the Gauss points (issue 14): measured a/b 0.512/0.488 at the sun and 0.307/0.693 at the ring (0.509 and
     # 0.315 with nodal constraints). The full-size model (docs/workflows.md, 581.9k DOF, nodal constraints) gave
     # 0.511/0.489 and 0.388/0.612: the coarse ring share is 0.08 low, so it is pinned, not compared with it.
+    # Sized by the loaded estimate (issue 26: member a's ring mesh gets a second zone, on the pair that takes 0.21
+    # of it) the coarse ring share moved to 0.322 (measured), nearer the full size's; 0.307 with sizing = "tca".
     assert sun["a"] == pytest.approx(0.512, abs=0.005)
-    assert ring["a"] == pytest.approx(0.307, abs=0.005)
+    assert ring["a"] == pytest.approx(0.322, abs=0.005)
     assert not s["edge_contact"] and not s["fe_edge_contact"]
     for itf in s["interfaces"].values():
         for m in itf["members"].values():

@@ -44,15 +44,16 @@ def test_neighbouring_pair_shares_the_load_near_a_transition(tmp_path):
 
 def test_coarse_neighbours_miss_the_sharing(tmp_path):
     """The reason for the neighbour size: with coarse neighbouring flanks the next pair stays open
-    (neighbour foci turned off: ``neighbour_reach_um = 0``)."""
-    s = run_stress(case_at(-5.71, neighbour_size_mm=3.0, neighbour_reach_um=0.0), tmp_path / "coarse").summary
+    (zones from the unloaded TCA, ``sizing = "tca"``, with neighbour foci turned off: ``neighbour_reach_um = 0``)."""
+    s = run_stress(case_at(-5.71, neighbour_size_mm=3.0, neighbour_reach_um=0.0, sizing="tca"), tmp_path / "coarse").summary
     nxt, cur, _ = next_pair_share(s)
     assert nxt < 0.01 and cur > 0.99
     assert s["position"]["refined_neighbours"] == []
 
 
 def test_a_pair_within_reach_is_meshed_like_the_loaded_one(tmp_path):
-    """With the default reach the next pair (5.2 arcsec behind) gets its own refined zone, so even coarse
+    """The next pair (5.2 arcsec behind) gets its own refined zone — the loaded estimate loads it (the default
+    ``sizing = "loaded"``; with ``"tca"`` it is within the default reach of the unloaded TCA) — so even coarse
     neighbouring flanks elsewhere share the load as the finest meshes do (0.545, module docstring)."""
     s = run_stress(case_at(-5.71, neighbour_size_mm=3.0), tmp_path / "focus").summary
     nxt, cur, _ = next_pair_share(s)

@@ -1,0 +1,171 @@
+"""Models sized by the loaded TCA (issue 26): speed against error of the new defaults beside the models before it.
+
+Run: ``python -m benchmarks.sizing --out DIR`` (``make bench`` area ``sizing``; about 15 min on a quiet 2-core
+machine, needs ~10 GB for the twin drive sized as before); ``--quick`` runs the estimate sweep alone (no solve).
+
+Rows, each solved in its own process (its peak resident memory is the row's memory):
+
+* the shipped crowned pair (``stress_pair_small.toml`` at the default refine 1, position of maximum TE):
+  ``sizing = "loaded"`` (the new default) at refine 0.71, 1 and 1.41 (Richardson's value of the fillet stress and
+  of the peak pressure from the three), and ``sizing = "tca"`` at refine 1 (the model before issue 26);
+* the FZG-type aligned spur pair (16/24, m 4.5, b 14, x 0.18/0.17, a = 91.5 mm, 120 N m) at the pitch point,
+  against Hertz's line contact of the whole load;
+* Part 1's twin drive, new design (``stress_part1_new.toml``): its shipped refine with both sizings.
+
+Then the resource estimate against the mesh (no solve) for every shipped stress case and the aligned and
+misaligned (Δγ = 3′) helical pair at refine 0.25, 0.5 and 1: within −10 %/+20 % of the mesh built, or refused
+before meshing when it exceeds the memory limit (``GEARFE_MAX_MEMORY_GB``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from tca.errors import InputError
+
+from benchmarks.convergence import richardson
+from pipelines.cases.reader import CASES_DIR, load_case
+from pipelines.cases.schema import Table
+from pipelines.cases.stress import read_stress_case
+from pipelines.models.stress.model import check_resources, estimate_resources, mesh_scene
+from pipelines.models.stress.run import build_scene, run_stress
+
+__all__ = ["main", "ROWS", "FZG", "run_row", "estimate_sweep"]
+
+FZG = {"gears.pinion.teeth": 16, "gears.pinion.profile_shift": 0.18, "gears.wheel.profile_shift": 0.17,
+       "center_distance_mm": 91.5}
+R2 = 2 ** 0.5
+ROWS = [
+    ("crowned pair, loaded, refine 0.71", "stress_pair_small", {"mesh.refine": 1 / R2}),
+    ("crowned pair, loaded, refine 1 (default)", "stress_pair_small", {"mesh.refine": 1.0}),
+    ("crowned pair, loaded, refine 1.41", "stress_pair_small", {"mesh.refine": R2}),
+    ("crowned pair, tca, refine 1 (before)", "stress_pair_small", {"mesh.refine": 1.0, "mesh.sizing": "tca"}),
+    ("FZG spur pair, loaded (default)", "stress_spur_pair", FZG),
+    ("FZG spur pair, tca (before)", "stress_spur_pair", {**FZG, "mesh.sizing": "tca"}),
+    ("twin new design, loaded (default)", "stress_part1_new", {}),
+    ("twin new design, tca (before)", "stress_part1_new", {"mesh.sizing": "tca"}),
+]
+HELICAL = {"aligned": {}, "misaligned": {"misalignment": {"d_gamma_arcmin": 3.0}}}
+
+
+def _table(name: str, overrides: dict) -> Table:
+    """A shipped case with dotted-key overrides."""
+    t = load_case(CASES_DIR / f"{name}.toml")
+    for key, value in overrides.items():
+        *path, last = key.split(".")
+        d = t.data
+        for p in path:
+            d = d.setdefault(p, {})
+        d[last] = value
+    return t
+
+
+def run_row(name: str, overrides: dict) -> dict:
+    """One solved case: DOF, times [s], peak pressure, fillet and von Mises stresses [MPa], shares, Hertz."""
+    case = read_stress_case(_table(name, overrides))
+    t0 = time.perf_counter()
+    with tempfile.TemporaryDirectory() as d:
+        s = run_stress(case, Path(d)).summary
+    shares = {f"{k}/{m}": max([v for t, v in d["teeth"].items() if t.startswith(m + "/")], default=0.0)
+              for k, d in s["load_share"].items() for m in d["members"]}
+    members = {f"{k}/{m}": d["members"][m] for k, d in s["load_share"].items() for m in d["members"]}
+    hz = [m["hertz_estimate"]["p0_mpa"] for d in s["interfaces"].values() for m in d["members"].values()]
+    return {"dofs": s["dofs"], "total_s": time.perf_counter() - t0, "tca_s": s["tca_s"], "mesh_s": s["mesh_s"],
+            "solve_s": s["solve_s"], "p": s["max_contact_pressure_mpa"], "fillet": s["max_fillet_stress_mpa"],
+            "von_mises": s["max_von_mises_mpa"], "max_pair_share": shares, "member_share": members, "hertz_p0": max(hz),
+            "warnings": s["warnings"], "peak_gb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e6}
+
+
+def estimate_sweep() -> list[dict]:
+    """Estimate against mesh (or refusal) of every shipped stress case and the helical pairs at refine 0.25-1."""
+    cases = [(p.stem, {}) for p in sorted(CASES_DIR.glob("stress_*.toml"))]
+    cases += [("stress_helical_pair", {"mesh.refine": r, **({"misalignment.d_gamma_arcmin": 3.0} if k else {})})
+              for k in (False, True) for r in (0.25, 0.5, 1.0)]
+    rows = []
+    for name, ov in cases:
+        case = read_stress_case(_table(name, ov))
+        scene, _ = build_scene(case)
+        est = estimate_resources(scene)
+        row = {"case": name, "overrides": ov, "estimated_dofs": est.dofs, "estimated_gb": est.memory_gb}
+        try:
+            check_resources(scene, case.mesh)
+        except InputError as e:
+            rows.append({**row, "refused": str(e)})
+            continue
+        mesh = mesh_scene(scene)
+        rows.append({**row, "dofs": 3 * mesh.n_points, "ratio": est.dofs / (3 * mesh.n_points)})
+        print(f"bench_sizing: {name} {ov}: estimated {est.dofs}, meshed {3 * mesh.n_points} DOF", flush=True)
+    return rows
+
+
+def _child(label: str) -> dict:
+    """A row solved in a fresh process (its peak memory is the row's)."""
+    p = subprocess.run([sys.executable, "-m", "benchmarks.sizing", "--row", label], capture_output=True, text=True,
+                       check=True)
+    return json.loads(p.stdout.strip().splitlines()[-1])
+
+
+def write_report(rows: dict, sweep: list[dict], out: Path) -> None:
+    L = ["# Models sized by the loaded TCA (issue 26)", "",
+         "| model | DOF | total [s] | solve [s] | peak memory [GB] | peak pressure [MPa] | fillet [MPa] | largest pair share |",
+         "|---|---|---|---|---|---|---|---|"]
+    for label, r in rows.items():
+        sh = ", ".join(f"{k} {v:.3f}" for k, v in r["max_pair_share"].items())
+        L.append(f"| {label} | {r['dofs']} | {r['total_s']:.1f} | {r['solve_s']:.1f} | {r['peak_gb']:.2f} | {r['p']:.1f} | "
+                 f"{r['fillet']:.1f} | {sh} |")
+    levels = [rows[label] for label, _, ov in ROWS[:3] if label in rows]
+    if len(levels) == 3:
+        for key in ("fillet", "p"):
+            try:  # element sizes h = 1/refine
+                x = richardson([R2, 1.0, 1 / R2], [r[key] for r in levels])
+                L += ["", f"Richardson ({key}) from refine 0.71/1/1.41: {x.value:.1f} MPa (order {x.order:.2f}); "
+                      f"the default (refine 1) {levels[1][key] / x.value - 1:+.1%}"]
+            except InputError as e:
+                L += ["", f"Richardson ({key}): none ({e})"]
+    fzg = rows.get(ROWS[4][0])
+    if fzg:
+        L += ["", f"FZG pair: peak pressure / Hertz p0 = {fzg['p'] / fzg['hertz_p0']:.4f}"]
+    L += ["", "## Resource estimate against the mesh", "", "| case | overrides | estimated DOF | meshed DOF | ratio |",
+          "|---|---|---|---|---|"]
+    for r in sweep:
+        L.append(f"| {r['case']} | {r['overrides']} | {r['estimated_dofs']} | {r.get('dofs', 'refused')} | "
+                 f"{r['ratio']:.3f} |" if "ratio" in r else
+                 f"| {r['case']} | {r['overrides']} | {r['estimated_dofs']} | refused ({r['estimated_gb']:.1f} GB) | – |")
+    (out / "sizing.md").write_text("\n".join(L) + "\n")
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(prog="bench_sizing", description=__doc__.splitlines()[0])
+    ap.add_argument("--out", default="out/bench/sizing")
+    ap.add_argument("--quick", action="store_true", help="the estimate sweep alone (no solve)")
+    ap.add_argument("--row", help=argparse.SUPPRESS)  # one row in this process (the parent's child)
+    args = ap.parse_args(argv)
+    if args.row is not None:
+        _, name, ov = next(r for r in ROWS if r[0] == args.row)
+        print(json.dumps(run_row(name, ov)))
+        return 0
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    rows = {}
+    if not args.quick:
+        for label, _, _ in ROWS:
+            rows[label] = _child(label)
+            print(f"bench_sizing: {label}: {rows[label]['dofs']} DOF, {rows[label]['total_s']:.1f} s", flush=True)
+    sweep = estimate_sweep()
+    write_report(rows, sweep, out)
+    (out / "sizing.json").write_text(json.dumps({"rows": rows, "sweep": sweep, "max_memory_gb": os.environ.get(
+        "GEARFE_MAX_MEMORY_GB")}, indent=1, default=str))
+    print(f"wrote {out / 'sizing.md'}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
