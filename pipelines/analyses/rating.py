@@ -37,7 +37,7 @@ from tca.rating.rating import GearRating, PairRating, rate
 from pipelines.cases.rating import MeshRating
 
 __all__ = ["STANDARD", "rating_record", "gear_record", "ltca_factors", "SIMPLIFIED_MARKS", "print_rating",
-           "ltca_rating"]
+           "ltca_rating", "train_rating"]
 
 STANDARD = "ISO 6336-1/-2/-3/-5 method B (2006 formulas, tca.rating; docs/rating.md)"
 SIMPLIFIED_MARKS = ("taken as 1", "simplified", "hardness-only", "solid gear", "no rim thickness")
@@ -212,3 +212,30 @@ def ltca_rating(case, summary: dict, folder) -> dict | None:
     f, det = ltca_factors(_read_csv(folder / "results.csv"), _read_csv(folder / "pressure.csv"), case.torque * 1e-3,
                           b, bins)
     return rating_record(meshes, {"pair": f}, {"pair": det})
+
+
+def train_rating(case, summary: dict) -> dict | None:
+    r"""The ``rating`` of ``gearfe ltca`` on a Part 1 train case with ``[rating]``: ISO's factors, and K_γ of the
+    loaded train (source "gearfe"); None without ``[rating]`` (or for an isostatic train, which has none).
+
+    The train is rated member by member (:func:`pipelines.cases.rating.train_meshes`: each member a helical pair
+    carrying :math:`T_3/(2n)`), at the run's torque with the largest K_γ: the sun torque :math:`T_1` of the run
+    (the trains' convention) gives the ring torque :math:`T_3 = T_1 N_3/N_1` with the carrier at rest. A member's
+    load factor is the members' K_γ (``k_gamma_members``: 2n times the largest member share of the sun mesh); a
+    train without members (single helical or spur planets) would take ``k_gamma``.
+    """
+    from pipelines.cases.rating import train_meshes
+
+    spec = getattr(case, "rating", None)
+    if spec is None or case.twin is None:
+        return None
+    key = "k_gamma_members" if "k_gamma_members" in summary else "k_gamma"
+    run = max(summary["torques"], key=lambda p: p[key])
+    kg = float(run[key])
+    tr = case.twin
+    meshes = train_meshes(tr, spec, run["torque_nm"] * 1e3 * tr.ring.teeth / tr.sun.teeth, None)
+    note = (f"loaded TCA of the train: max over the run of {'2n x the largest member' if key != 'k_gamma' else 'n x the largest planet'}"
+            f" share of the sun mesh ({key} at sun torque {run['torque_nm']:g} N m)")
+    f = AnalysisFactors(k_gamma=Given(max(kg, 1.0), Source.GEARFE, note))
+    det = {"k_gamma_key": key, "sun_torque_nm": run["torque_nm"], "k_gamma": kg}
+    return rating_record(meshes, {m.label: f for m in meshes}, {m.label: det for m in meshes})

@@ -26,6 +26,7 @@ import math
 from tca.errors import InputError
 from tca.pair.analysis import TCAOptions
 
+from pipelines.cases.rating import read_rating, train_names
 from pipelines.cases.schema import Table
 from pipelines.models.trains.case import TrainCase
 from pipelines.models.trains.geometry import TrainErrors
@@ -123,8 +124,9 @@ def read_planetary_ltca(case: Table) -> TrainCase:
     tca = read_tca_options(case.table("tca", required=False))
     _check_assembly(train.sun, train.planet, train.ring, train.planets)
     opts = _read_ltca(lt, default_torque(train.sun, train.planets, 2), tca, regulation="tca")
+    rating = read_rating(case.table("rating", required=False), train_names(train))  # rated at the run's torques
     return TrainCase("planetary", title, train.sun, train.planet, train.ring, train.planets, TrainErrors(), opts,
-                     train, tuple(errors), reg)
+                     train, tuple(errors), reg, rating)
 
 
 def _check_assembly(sun, planet, ring, n: int) -> None:

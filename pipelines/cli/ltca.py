@@ -21,7 +21,7 @@ from pipelines.cli.interrupt import check_interrupted
 from pipelines.cli.outdir import staged_output
 from pipelines.cases.kinds import read_case
 from pipelines.models.ltca.run import progress_bar, run_ltca
-from pipelines.analyses.rating import ltca_rating, print_rating
+from pipelines.analyses.rating import ltca_rating, print_rating, train_rating
 from pipelines.jsonio import plain
 
 __all__ = ["add_args", "handle"]
@@ -71,7 +71,7 @@ def _handle_train(args, case, t0: float) -> int:
 
     with staged_output(args.out) as tmp:
         s = run_train_ltca(case, Path(tmp), say=_say, bar=progress_bar("gearfe ltca: positions"))
-        s = {**s, "case": str(args.case), "elapsed_s": time.perf_counter() - t0}
+        s = {**s, "case": str(args.case), "rating": plain(train_rating(case, s)), "elapsed_s": time.perf_counter() - t0}
         s["files"] = s["files"] + ["summary.json"]
         (Path(tmp) / "summary.json").write_text(json.dumps(plain(s), indent=2) + "\n")
     t = s["timing"]
@@ -86,5 +86,6 @@ def _handle_train(args, case, t0: float) -> int:
         print(line)
         for u in p["unloaded_planets"]:
             print(f"    planet {u['planet']} carries no load at {u['positions']} position(s)")
+    print_rating(s["rating"])
     print(f"results in {args.out}/")
     return 0

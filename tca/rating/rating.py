@@ -154,6 +154,8 @@ class RatingCase:
                 continue
             if not isinstance(g, Given):
                 raise RatingInputError(key, g, "a Given record (value, source, note) or None")
+            if key == "k_gamma" and g.source is Source.GEARFE:
+                hi = 2.0 * 20  # computed by a loaded train: up to 2n (a twin member carrying the whole torque)
             check_range(key, g.value, lo, hi)
 
 

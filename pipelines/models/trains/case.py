@@ -25,3 +25,4 @@ class TrainCase:
     twin: object = None  # DoubleHelicalTrain (planetary)
     shaft_errors: tuple = ()  # ShaftErrors per shaft (planetary)
     regulation: object = None  # RegulationSettings (planetary)
+    rating: object = None  # RatingSpec of an optional [rating] table (planetary: ISO 6336 with the run's K_gamma)
