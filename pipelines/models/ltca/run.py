@@ -192,14 +192,19 @@ def check_indices(rows: list, n: int) -> list[int]:
 
 
 def fe_check(model: LTCAModel, rows: list, indices: list[int], out: Path | None = None, say=None) -> dict:
-    """Full contact FE (``gearfe stress`` of the same case) at the rows' positions and torques against the loaded TCA."""
+    """Full contact FE (``gearfe stress`` of the same case) at the rows' positions and torques against the loaded TCA.
+
+    The FE is sized from the unloaded TCA (``[mesh] sizing = "tca"``: a zone on every pair within the TCA's reach),
+    never from the loaded estimate: a reference sized by the model it checks would share that model's view of
+    which pairs carry load."""
     from pipelines.models.stress.run import run_stress
     from pipelines.models.stress.results import loaded_te
 
     pts = []
     for n, i in enumerate(indices):
         r = rows[i]
-        c = dataclasses.replace(model.case, phi1=math.radians(r["phi1_deg"]), torque=r["torque_nm"] * 1e3)
+        c = dataclasses.replace(model.case, phi1=math.radians(r["phi1_deg"]), torque=r["torque_nm"] * 1e3,
+                                mesh=dataclasses.replace(model.case.mesh, sizing="tca"))
         t0 = time.perf_counter()
         s = run_stress(c, out / f"fe_{i}").summary if out is not None else _run_tmp(c, run_stress)
         rot = loaded_te(c, s)["elastic_rotation_arcsec"]
