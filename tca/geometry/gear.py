@@ -189,7 +189,8 @@ class Gear:
                               self.parabola_pos, self.parabola_neg, self.parabola_apex, tr.amount,
                               bare.u_at_radius(1, tr.start_radius), ar.u_tip, tr.power)
         except InputError as e:
-            raise InputError(f"{self.name}.{e.field}", e.value, e.valid) from None
+            field = e.field if e.field.startswith(f"{self.name}.") else f"{self.name}.{e.field}"
+            raise InputError(field, e.value, e.valid, e.why) from None
 
     def segments(self, side: int):
         """Rack pieces (root, fillet, flank) generating tooth flank `side`."""

@@ -15,6 +15,7 @@ from scipy.interpolate import CubicSpline
 
 from tca.contact.systems import PlacedFlank, tangency_system
 from tca.errors import ConvergenceError
+from tca.geometry.involute import working_pressure_angle
 from tca.numerics.newton import NewtonOptions, PreferredPoint, newton
 from tca.pair.gear_pair import GearPair
 from tca.pair.bounded import bounded_pass
@@ -27,7 +28,9 @@ __all__ = ["solve_reference_pair", "classify_tangency", "in_domain"]
 def _contact_ratio(pair: GearPair) -> float:
     """Transverse + overlap contact ratio of the nominal involute pair (sizes the search range)."""
     g1, g2 = pair.gear1, pair.gear2
-    at = g1.transverse_pressure_angle
+    at = working_pressure_angle(g1, g2, pair.E)
+    if not math.isfinite(at):
+        at = g1.transverse_pressure_angle
     pbt = 2 * math.pi * g1.r_b / g1.teeth
     a1 = math.sqrt(max(g1.r_tip**2 - g1.r_b**2, 0.0))
     a2 = math.sqrt(max(g2.r_tip**2 - g2.r_b**2, 0.0))
