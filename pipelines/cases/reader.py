@@ -61,14 +61,14 @@ from pipelines.cases.schema import Table
 
 __all__ = ["load_case", "parse_case_text", "MAX_CASE_BYTES", "read_gear", "read_gears", "read_pair", "read_misalignment",
            "read_tca_options", "check_mesh", "CASES_DIR", "MODULE_MM", "PRESSURE_ANGLE_DEG", "HELIX_MIN_DEG", "HELIX_MAX_DEG",
-           "FACE_WIDTH_MODULES", "TIP_RELIEF_MODULES", "CROWNING_MODULES"]
+           "FACE_WIDTH_MODULES", "TIP_RELIEF_MODULES", "CROWNING_THICKNESS"]
 
 CASES_DIR = Path(__file__).parent  # the shipped case files sit beside this module
 
 
 MAX_CASE_BYTES = 1 << 20
 TIP_RELIEF_MODULES = 0.1  # largest tip relief C_a in normal modules (and a quarter of the top land)
-CROWNING_MODULES = 0.1  # largest lead crowning C_beta in normal modules  # a case file is a few kB; anything above 1 MiB is not a case file
+CROWNING_THICKNESS = 0.25  # largest lead crowning C_beta: a quarter of the normal tooth thickness s_n  # a case file is a few kB; anything above 1 MiB is not a case file
 
 
 def load_case(path: str | Path) -> Table:
@@ -172,7 +172,9 @@ def read_gear(t: Table, name: str) -> Gear:
     if ct is not None:
         if plunge is not None:
             raise InputError(f"{t.path}.crowning", ct.data, "either [plunge] or [crowning], not both (the same disk plunging)")
-        c_max = CROWNING_MODULES * module * 1e3
+        s_n = module * (0.5 * math.pi + 2 * t.data.get("profile_shift", 0.0) * math.tan(math.radians(alpha))) \
+            if isinstance(t.data.get("profile_shift", 0.0), (int, float)) else module * 0.5 * math.pi
+        c_max = round(CROWNING_THICKNESS * s_n * 1e3, 1)  # [um] a quarter of the normal tooth thickness
         c_beta = ct.get("c_beta_um", float, lo=0.0, lo_open=True, hi=c_max) * 1e-3
         plunge = DiskPlunge(ct.get("disk_radius_mm", float, 100.0, lo=0.0, lo_open=True, hi=1e5), c_beta / (0.5 * face) ** 2)
         ct.done()

@@ -21,6 +21,7 @@ from tca.pair.gear_pair import GearPair
 from tca.pair.bounded import bounded_pass
 from tca.pair.relief import relief_pass
 from tca.pair.result import ContactKind, ReferencePairSolution, TCAOptions
+from tca.pair.sections import section_tangency
 
 __all__ = ["solve_reference_pair", "classify_tangency", "in_domain"]
 
@@ -58,6 +59,25 @@ def _solve_one(fun, x0, tol, prefer: PreferredPoint, maxiter=20):
     res = newton(fun, x0[None, :], NewtonOptions(tol=tol, maxiter=maxiter, max_backtracks=8), prefer=prefer,
                  raise_on_failure=False)
     return res.x[0], bool(res.converged[0]), float(res.residual[0]), int(res.iterations[0])
+
+
+def _by_sections(f1, f2, phi: float, guesses, tol: float, reach: float = math.inf):
+    """The fallback of a failed Newton solve at phi: :func:`tca.pair.sections.section_tangency` from each guess in
+    turn, in both surfaces' domains and within ``reach`` modules of both working areas, or None."""
+    ar = f1.gear.area(f1.side)
+    centre = (0.5 * (ar.u_form + ar.u_tip), 0.5 * (ar.z_min + ar.z_max))
+    reach = reach * max(f1.gear.module, f2.gear.module)
+    for x0 in guesses:
+        if x0 is None or not np.all(np.isfinite(x0)):
+            continue
+        r = section_tangency(f1, f2, phi, np.asarray(x0, float), tol, centre)
+        if r is not None and r[1] < tol and in_domain(f1, f2, r[0][None])[0] and \
+                _constraints(f1, f2, r[0][None]).max() <= reach:
+            return r[0]
+    return None
+
+
+RESCUE_REACH = 0.5  # [modules] how far outside the working areas a start found by sections may lie
 
 
 PREFER_WEIGHTS = np.array([1e-3, 1e-3, 0.0, 0.0, 0.0])
@@ -149,6 +169,11 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
     xs, conv, res, its = _solve_one(tangency_system(f1, f2, np.array([phi1_0])), x0, opts.tol, prefer, 60)
     total_its += its
     i0 = J
+    if not (conv and in_domain(f1, f2, xs[None])[0]):
+        # the start needs a tangency near the teeth (one far off them on the extended surfaces, on a misaligned
+        # helical pair, says nothing of the mesh: the search for edge contacts takes over, as when Newton fails)
+        xs = _by_sections(f1, f2, phi1_0, (x0,), opts.tol, reach=RESCUE_REACH)
+        conv = xs is not None
     if conv and in_domain(f1, f2, xs[None])[0]:
         X[i0], tan_ok[i0] = xs, True
     c = opts.coarse_every
@@ -184,6 +209,11 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
                         xs, conv, res, its = _solve_one(tangency_system(f1, f2, np.array([phis[i]])), X[hist[-1]],
                                                         opts.tol, prefer, maxiter=10)
                         total_its += its
+                        if not (conv and in_domain(f1, f2, xs[None])[0]):
+                            xs = _by_sections(f1, f2, phis[i], (guess[q], X[hist[-1]]), opts.tol)
+                            conv = xs is not None
+                            if conv:
+                                res = 0.0
                         if not (conv and in_domain(f1, f2, xs[None])[0]):
                             if deep(X[hist[-1]]):
                                 raise ConvergenceError("pair TCA (tangency)", f"phi1 = {math.degrees(phis[i]):.6f} deg",
@@ -229,9 +259,14 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
             for q in np.flatnonzero(~good):
                 i = fine[q]
                 nb = coarse[np.argmin(np.abs(coarse - i))]
+                # second chance by sections (near-line contacts), then from the nearest solved neighbour
+                xs = _by_sections(f1, f2, phis[i], (guess[q], X[nb]), opts.tol)
+                if xs is not None:
+                    X[i], tan_ok[i] = xs, True
+                    continue
                 if not deep(X[nb]):
                     continue  # near the end of the mesh: the bounded search takes over
-                # second chance from the nearest solved neighbour: a failure here is an error
+                # a failure here is an error
                 xs, conv, res, its = _solve_one(tangency_system(f1, f2, np.array([phis[i]])), X[nb], opts.tol, prefer)
                 if not (conv and in_domain(f1, f2, xs[None])[0]):
                     raise ConvergenceError("pair TCA (tangency)", f"phi1 = {math.degrees(phis[i]):.6f} deg", res, its)
