@@ -133,6 +133,14 @@ def in_domain(f1, f2, x) -> np.ndarray:
 
 
 DEEP_INSIDE = 0.05  # [mm] a tangency this far inside both working areas must have neighbours
+JUMP = 2.0  # [modules] a solution this far (u1, v1) from its continuation guess is another tangency: retried
+
+
+def _near(x: np.ndarray, guess: np.ndarray, jump: float) -> np.ndarray:
+    """Solutions (n, 5) within `jump` [mm] of their guesses on flank 1 (u1, v1): a nearly singular system
+    (a crowned helical pair) lets Newton run along the near-line of contact to a far tangency of the
+    extended surfaces, off the teeth (then the sections fallback starts from the guess)."""
+    return np.hypot(x[:, 0] - guess[:, 0], x[:, 1] - guess[:, 1]) <= jump
 
 
 def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_cycles: float | None = None,
@@ -160,8 +168,15 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
     total_its = 0
 
     out_of_mesh = max(pair.gear1.module, pair.gear2.module)
+    jump = JUMP * out_of_mesh
+
+    relief_u = [(k, f.gear.rack.relief_start - 0.5 * f.gear.module) for k, f in ((0, f1), (2, f2))
+                if f.gear.tip_relief is not None]
 
     def deep(x):
+        # near a tip relief the tangency may end at its kink (tca.pair.relief takes over there)
+        if any(x[k] > u_near for k, u_near in relief_u):
+            return False
         return bool(np.all(_constraints(f1, f2, x[None])[0] < -DEEP_INSIDE))
 
     # ---- tangency: coarse continuation from the pitch point in both directions
@@ -202,13 +217,14 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
                            NewtonOptions(tol=opts.tol, maxiter=20, max_backtracks=8), prefer=prefer,
                            raise_on_failure=False)
                 total_its += int(r.iterations.sum())
-                good = r.converged & in_domain(f1, f2, r.x)
+                good = r.converged & in_domain(f1, f2, r.x) & _near(r.x, guess, jump)
                 for q, i in enumerate(targets):
                     if not good[q]:
                         # retry once from the last solution; then the pair has left its mesh (or raise)
                         xs, conv, res, its = _solve_one(tangency_system(f1, f2, np.array([phis[i]])), X[hist[-1]],
                                                         opts.tol, prefer, maxiter=10)
                         total_its += its
+                        conv = conv and bool(_near(xs[None], guess[q][None], jump)[0])
                         if not (conv and in_domain(f1, f2, xs[None])[0]):
                             xs = _by_sections(f1, f2, phis[i], (guess[q], X[hist[-1]]), opts.tol)
                             conv = xs is not None
@@ -254,7 +270,7 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
             r = newton(tangency_system(f1, f2, phis[fine]), guess, NewtonOptions(tol=opts.tol, maxiter=40),
                        prefer=prefer, raise_on_failure=False)
             total_its += int(r.iterations.sum())
-            good = r.converged & in_domain(f1, f2, r.x)
+            good = r.converged & in_domain(f1, f2, r.x) & _near(r.x, guess, jump)
             X[fine[good]], tan_ok[fine[good]] = r.x[good], True
             for q in np.flatnonzero(~good):
                 i = fine[q]

@@ -66,51 +66,106 @@ def _slope(J: np.ndarray) -> tuple[float, np.ndarray]:
 
 
 def section_tangency(f1: PlacedFlank, f2: PlacedFlank, phi1: float, x0: np.ndarray, tol: float,
-                     centre: tuple[float, float], maxiter: int = 60):
+                     centre: tuple[float, float], maxiter: int = 20):
     """Point of tangency (u1, v1, u2, v2, phi2) at phi1 [rad] from the guess x0, by sections (module docstring);
-    ``centre`` (u_c, v_c) [mm] selects the point of a line contact. Returns (x, residual) or None."""
+    ``centre`` (u_c, v_c) [mm] selects the point of a line contact. Returns (x, residual) or None.
+
+    Newton on the section from the guess first; where it finds no root (no sign change of h within reach, as
+    on a flank whose tip relief breaks the contact line at its kink), the sections across the surface are
+    scanned and the root (or the part of a line contact) nearest the guess's section is taken."""
     fun = tangency_system(f1, f2, np.array([float(phi1)]))
-    v_lo, v_hi = f1.surface.v_range
-    s = float(np.clip(x0[1] if np.isfinite(x0[1]) else centre[1], v_lo, v_hi))
-    y = np.asarray(x0, float)[_Y]
-    sol = _inner(fun, s, y, tol)
-    if sol is None:
-        s = float(np.clip(centre[1], v_lo, v_hi))
-        sol = _inner(fun, s, y, tol)
-        if sol is None:
-            return None
+    v_range = f1.surface.v_range
+    s0 = float(np.clip(x0[1] if np.isfinite(x0[1]) else centre[1], *v_range))
+    sol = _inner(fun, s0, np.asarray(x0, float)[_Y], tol)
+    if sol is not None:
+        found = _newton_on_sections(fun, sol, tol, v_range, maxiter)
+        if found is not None:
+            return _prefer(fun, *found, tol, centre, v_range)
+    return _scan(fun, s0, np.asarray(x0, float)[_Y], tol, centre, v_range)
+
+
+def _newton_on_sections(fun, sol, tol, v_range, maxiter):
+    """Newton on s with bisection once bracketed (S2); (x, F, J) of a root or None."""
+    v_lo, v_hi = v_range
     x, F, J = sol
-    bracket = [None, None]  # (s, h) with h < 0 and h > 0
+    s = float(x[1])
+    bracket = [None, None]  # sections with h < 0 and h > 0
     for _ in range(maxiter):
         h = float(F[4])
         if abs(h) < tol:
-            return _prefer(fun, x, F, J, tol, centre, (v_lo, v_hi))
-        bracket[0 if h < 0 else 1] = (s, h)
+            return x, F, J
+        bracket[0 if h < 0 else 1] = s
         dh, _ = _slope(J)
-        step = -h / dh if dh != 0 and math.isfinite(dh) else math.inf
-        s_new = s + step
+        s_new = s - h / dh if dh != 0 else math.nan
         if bracket[0] is not None and bracket[1] is not None:
-            a, b = sorted((bracket[0][0], bracket[1][0]))
-            if not a < s_new < b:
+            a, b = sorted(bracket)
+            if not (math.isfinite(s_new) and a < s_new < b):
                 s_new = 0.5 * (a + b)
-        else:
-            limit = 0.25 * (v_hi - v_lo)
-            if not math.isfinite(s_new) or abs(s_new - s) > limit:
-                s_new = s + math.copysign(limit, step if math.isfinite(step) else -h)
-            s_new = float(np.clip(s_new, v_lo, v_hi))
-            if s_new == s:
-                return None  # the root lies beyond the surface: no tangency at this position
-        sol = _inner(fun, s_new, x[_Y], tol)
-        if sol is None:
-            if bracket[0] is not None and bracket[1] is not None:
-                return None
+        elif not (math.isfinite(s_new) and abs(s_new - s) <= 0.25 * (v_hi - v_lo) and v_lo <= s_new <= v_hi):
+            return None  # no root within reach of Newton: the scan takes over
+        nxt = _inner(fun, s_new, x[_Y], tol)
+        if nxt is None:
             return None
         s = s_new
-        x, F, J = sol
+        x, F, J = nxt
     return None
 
 
-def _prefer(fun, x, F, J, tol, centre, v_range):
+SCAN_SECTIONS = 41  # sections across the surface's axial range scanned when Newton on the section fails
+
+
+def _scan(fun, s0: float, y0: np.ndarray, tol: float, centre, v_range):
+    """Roots of h over sections across v_range (a sign change bisected, or |h| < tol); the one nearest s0."""
+    ss = np.linspace(*v_range, SCAN_SECTIONS)
+    order = np.argsort(np.abs(ss - s0))
+    sols = {}
+    y = y0
+    for i in order:  # outward from the guess, each section started from the nearest one solved
+        r = _inner(fun, float(ss[i]), y, tol)
+        if r is None:
+            r = _inner(fun, float(ss[i]), y0, tol)
+        if r is not None:
+            sols[i] = r
+            y = r[0][_Y]
+    roots = []
+    for i in sorted(sols):
+        x, F, J = sols[i]
+        if abs(F[4]) < tol:
+            roots.append((abs(ss[i] - s0), sols[i]))
+        j = i + 1
+        if j in sols and F[4] * sols[j][1][4] < 0:
+            r = _bisect(fun, sols[i], sols[j], tol)
+            if r is not None:
+                roots.append((abs(r[0][1] - s0), r))
+    if not roots:
+        return None
+    x, F, J = min(roots, key=lambda q: q[0])[1]
+    return _prefer(fun, x, F, J, tol, centre, v_range)
+
+
+def _bisect(fun, a, b, tol, maxiter: int = 60):
+    """A root of h between two sections of opposite sign (secant steps kept inside the bracket)."""
+    (xa, Fa, _), (xb, Fb, _) = a, b
+    for _ in range(maxiter):
+        sa, sb, ha, hb = float(xa[1]), float(xb[1]), float(Fa[4]), float(Fb[4])
+        s = sa - ha * (sb - sa) / (hb - ha)
+        if not (min(sa, sb) < s < max(sa, sb)) or _ % 3 == 2:
+            s = 0.5 * (sa + sb)
+        r = _inner(fun, s, 0.5 * (xa[_Y] + xb[_Y]), tol)
+        if r is None:
+            return None
+        if abs(r[1][4]) < tol:
+            return r
+        if r[1][4] * ha < 0:
+            xb, Fb = r[0], r[1]
+        else:
+            xa, Fa = r[0], r[1]
+        if abs(sb - sa) < 1e-12:
+            return None
+    return None
+
+
+def _prefer(fun, x, F, J, tol, centre, v_range):  # noqa: PLR0913
     """A solution; on a line contact (h = 0 along the line) the point nearest the centre of flank 1's area."""
     dh, dy = _slope(J)
     u_c, v_c = centre
