@@ -13,6 +13,7 @@ from tca.planetary.train import ShaftErrors
 from pipelines.cases.reader import ARCMIN, read_gears, read_pair, read_tca_options
 from pipelines.cases.schema import Table
 from pipelines.cases.planetary import read_regulation_options, read_train
+from pipelines.cases.rating import with_rating
 from pipelines.models.stress.case import MODELS, StressCase
 from pipelines.models.stress.model import FESettings
 from pipelines.models.stress.scene import PHASES
@@ -132,5 +133,6 @@ def read_stress_case(case: Table) -> StressCase:
         out = StressCase("twin", torque, title, train=train, errors=errors, regulation=ro.mode, dz=ro.dz,
                          regulation_tol=ro.tol, regulation_maxiter=ro.max_iterations, member_phase=ro.member_phase, position=pos, phi1=phi1, roll=roll, tca=tca,
                          mesh=mesh, fe=fe)
+    out = with_rating(case, out)  # [rating]: ISO 6336 (pipelines.cases.rating)
     case.done()
     return out

@@ -8,6 +8,7 @@ reported in one line before any solve starts (the analyses read the same keys ag
 
 from __future__ import annotations
 
+from pipelines.cases.rating import read_rating, train_names
 from pipelines.cases.schema import Table
 
 __all__ = ["read_pair_tca", "read_planetary_tca", "read_isostatic_tca", "read_face_tca", "validate_case"]
@@ -23,8 +24,9 @@ def read_pair_tca(t: Table) -> None:
     from pipelines.cases.reader import read_gears, read_pair, read_tca_options
 
     _header(t)
-    read_pair(t, read_gears(t))
+    pair, _, _ = read_pair(t, read_gears(t))
     read_tca_options(t.table("tca", required=False))
+    read_rating(t.table("rating", required=False), (pair.gear1.name, pair.gear2.name), case_has_torque=False)  # ISO 6336
     t.done()
 
 
@@ -38,6 +40,7 @@ def read_planetary_tca(t: Table) -> None:
     read_installment(t.table("installment", required=False), train.planets)
     read_regulation_options(t.table("regulation", required=False))
     read_tca_options(t.table("tca", required=False))
+    read_rating(t.table("rating", required=False), train_names(train), case_has_torque=False)  # ISO 6336
     t.done()
 
 

@@ -46,6 +46,7 @@ SUBCOMMANDS = {
     "compare": "pipelines.cli.compare",
     "ltca": "pipelines.cli.ltca",
     "crosscheck": "pipelines.cli.crosscheck",
+    "rate": "pipelines.cli.rate",
 }
 
 

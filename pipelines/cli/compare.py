@@ -38,6 +38,7 @@ from pipelines.cli.run import add_overrides, progress, read_with_overrides, writ
 from pipelines.cli.outdir import staged_output
 from pipelines.render.plots import side_by_side
 from pipelines.report.figures import picture_range
+from pipelines.report.compare import shared_comparison
 from pipelines.report.html import compare_html, run_html
 from pipelines.report.run import add_images, run_pipeline, zone_limits, zone_name
 
@@ -98,13 +99,17 @@ def _markdown(rows: list[dict], f: dict, summaries: dict) -> str:
     keys = []
     for r in rows:
         keys += [k for k in r if k not in keys]
-    lines = ["# New vs conventional design (Numerical Example 1.3, Fig. 1.9)", ""]
+    lines = ["# New vs conventional design (Numerical Example 1.3, Fig. 1.9)" if "reproduced" in f else
+             "# Two load cases compared: " + " vs ".join(summaries), ""]
     for label, s in summaries.items():
         lines.append(f"- **{label}**: {s.get('title', '')} (`{s.get('case', '')}`), φ1 = {s['position']['phi1_deg']:.4f} deg, "
                      f"{s['dofs']} DOF, total {s['total_s']:.1f} s")
     lines += ["", "| " + " | ".join(keys) + " |", "|" + "---|" * len(keys)]
     for r in rows:
         lines.append("| " + " | ".join(_cell(r.get(k, "")) for k in keys) + " |")
+    if "reproduced" not in f:  # not Part 1's twin drives: what the two cases share
+        lines += ["", "## What the two cases share", ""] + [f"- {k}: {v}" for k, v in f.items()]
+        return "\n".join(lines) + "\n"
     lines += ["", "## Finding", "",
               f"- new design shares the load between the members (each >= {SHARED:g} of every interface's force): "
               f"{f['new_shares_load']}; edge contact: {f['new_edge_contact']}",
@@ -158,12 +163,13 @@ def handle(args) -> int:
                 pimgs.append(tmp / label / f"{zone_name(itf, mem)}_pressure.png")
                 sh = summaries[label]["load_share"][itf]["members"][mem]
                 titles.append(f"({'a' if label == LABELS[0] else 'b'}) {label}: {itf}, member {mem}, share {sh:.2f}")
-        side_by_side(imgs, titles, tmp / "compare_zones.png", "von Mises stress [MPa] on the loaded flanks", ncols=len(zones))
-        side_by_side(pimgs, titles, tmp / "compare_pressure.png", "contact pressure [MPa]", ncols=len(zones))
+        cols = min(len(zones), 2)  # at most two panels a row: colour-bar ticks legible at page scale
+        side_by_side(imgs, titles, tmp / "compare_zones.png", "von Mises stress [MPa] on the loaded flanks", ncols=cols)
+        side_by_side(pimgs, titles, tmp / "compare_pressure.png", "contact pressure [MPa]", ncols=cols)
         side_by_side([tmp / k / "overview.png" for k in LABELS], list(LABELS), tmp / "compare_overview.png",
                      "von Mises stress [MPa]")
         rows = compare_table(summaries)
-        f = finding(summaries)
+        f = finding(summaries) if a.model == "twin" else shared_comparison(summaries)  # Part 1's finding: twins only
         keys = []
         for r in rows:
             keys += [k for k in r if k not in keys]

@@ -21,6 +21,8 @@ from pipelines.cli.interrupt import check_interrupted
 from pipelines.cli.outdir import staged_output
 from pipelines.cases.kinds import read_case
 from pipelines.models.ltca.run import progress_bar, run_ltca
+from pipelines.analyses.rating import ltca_rating, print_rating
+from pipelines.jsonio import plain
 
 __all__ = ["add_args", "handle"]
 
@@ -40,7 +42,7 @@ def handle(args) -> int:
     _, (case, opts) = read_case(args.case, "ltca")  # bad input fails here, before any output
     with staged_output(args.out) as tmp:
         s = run_ltca(case, opts, Path(tmp), say=_say, bar=progress_bar("gearfe ltca: positions"))
-        s = {**s, "case": str(args.case), "elapsed_s": time.perf_counter() - t0}
+        s = {**s, "case": str(args.case), "rating": plain(ltca_rating(case, s, tmp)), "elapsed_s": time.perf_counter() - t0}
         s["files"] = s["files"] + ["summary.json"]
         (Path(tmp) / "summary.json").write_text(json.dumps(s, indent=2) + "\n")
     t = s["timing"]
@@ -54,5 +56,6 @@ def handle(args) -> int:
         w, m = s["fe_check"]["worst"], s["fe_check"]["met"]
         for k, v in w.items():
             print(f"  check vs full FE, {k}: worst {v:.4g} (target {s['fe_check']['targets'][k]}: {'met' if m[k] else 'MISSED'})")
+    print_rating(s["rating"])
     print(f"results in {args.out}/")
     return 0

@@ -29,6 +29,7 @@ from pipelines.cases.reader import load_case
 from pipelines.cli.outdir import staged_output
 from pipelines.report.html import run_html
 from pipelines.report.run import run_pipeline
+from pipelines.analyses.rating import print_rating
 from pipelines.cases.schema import Table
 from pipelines.cases.kinds import kind_of, read_checked
 from pipelines.models.stress.case import StressCase
@@ -36,7 +37,7 @@ from pipelines.calculix.crosscheck import write_inp_job
 
 __all__ = ["add_args", "handle", "read_with_overrides", "SHOWN"]
 
-SHOWN = ("max_von_mises_mpa", "max_contact_pressure_mpa", "contact_force_n", "max_fillet_stress_mpa",
+SHOWN = ("max_von_mises_mpa", "contact_peak_mpa", "max_contact_pressure_mpa", "contact_force_n", "max_fillet_stress_mpa",
          "torque_balance_error", "edge_contact", "fe_edge_contact", "dofs", "total_s")
 
 
@@ -114,6 +115,7 @@ def handle(args) -> int:
         print(f"  {k:<{width}}  {v:.6g}" if isinstance(v, float) else f"  {k:<{width}}  {v}")
     for name, share in s["load_share"].items():
         print(f"  load share {name}: " + ", ".join(f"{m} {v:.3f}" for m, v in share["members"].items()))
+    print_rating(s.get("rating"))
     print("  stage times [s]: " + ", ".join(f"{k} {v:.1f}" for k, v in s["stages"].items()))
     print(f"results in {args.out}/ (report.html, report.md, summary.json, result.vtu, images: {', '.join(s['images'][:2])}, ...)")
     return 0

@@ -20,12 +20,15 @@ body { font-family: -apple-system, 'Segoe UI', Helvetica, Arial, sans-serif; mar
 h1 { font-size: 1.5em; border-bottom: 2px solid #334; padding-bottom: .2em; }
 h2 { font-size: 1.2em; margin-top: 1.6em; border-bottom: 1px solid #aab; }
 h3 { font-size: 1.0em; margin: 1em 0 .4em; }
-table { border-collapse: collapse; margin: .5em 0 1em; font-size: .9em; }
-th, td { border: 1px solid #bbc; padding: .25em .6em; text-align: right; }
-th { background: #e8eaf2; } td:first-child, th:first-child { text-align: left; }
+table { border-collapse: collapse; margin: .5em 0 1em; font-size: .85em; max-width: 100%; }
+th, td { border: 1px solid #bbc; padding: .2em .45em; text-align: right; }
+th { background: #e8eaf2; font-weight: 600; text-align: center; overflow-wrap: anywhere; }
+td { white-space: nowrap; } td:first-child, th:first-child { text-align: left; }
+td.text { text-align: left; max-width: 40em; white-space: normal; }
 figure { margin: .6em 0 1.2em; } figure img { max-width: 100%; border: 1px solid #ddd; }
 figcaption { font-size: .85em; color: #444; margin-top: .2em; }
-.grid { display: grid; gap: 1em; } .note { color: #555; font-size: .9em; }
+.grid { display: grid; gap: 1.5em; } .grid > div { min-width: 0; }
+.note { color: #555; font-size: .9em; } details { margin: .4em 0 1em; }
 pre { background: #f4f4f7; border: 1px solid #ddd; padding: .8em; font-size: .8em; overflow-x: auto; }
 .warn { color: #a40000; }
 """
@@ -50,8 +53,14 @@ def table(rows: list[dict], columns: list[str] | None = None, headers: dict | No
             columns += [k for k in r if k not in columns]
     headers = headers or {}
     head = "".join(f"<th>{html.escape(headers.get(c, c))}</th>" for c in columns)
-    body = "".join("<tr>" + "".join(f"<td>{fmt(r.get(c))}</td>" for c in columns) + "</tr>" for r in rows)
+    body = "".join("<tr>" + "".join(_cell(r.get(c)) for c in columns) + "</tr>" for r in rows)
     return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+
+
+def _cell(v) -> str:
+    """A cell; long texts (notes) left-aligned and wrapped."""
+    text = fmt(v)
+    return f'<td class="text">{text}</td>' if isinstance(v, str) and len(v) > 40 else f"<td>{text}</td>"
 
 
 def image(path: Path, caption: str = "", alt: str = "") -> str:

@@ -22,8 +22,8 @@ from pipelines.render import offscreen
 
 __all__ = ["offscreen", "to_pyvista", "Zone", "Scalars", "render_contact_zone", "render_overview", "image_is_blank"]
 
-SCALAR_BAR = dict(title_font_size=18, label_font_size=14, n_labels=6, fmt="%.0f", vertical=True,
-                  position_x=0.86, position_y=0.12, height=0.76, width=0.06)
+SCALAR_BAR = dict(title_font_size=24, label_font_size=22, n_labels=6, fmt="%.0f", vertical=True,
+                  position_x=0.84, position_y=0.12, height=0.72, width=0.05, background_color="white", fill=True)
 
 
 def to_pyvista(mesh: HexMesh, point_data: dict | None = None, cell_data: dict | None = None) -> pv.UnstructuredGrid:

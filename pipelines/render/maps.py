@@ -108,7 +108,7 @@ def plot_flank_pressure(flank: TriField, path: Path, *, curves=(), point=None, a
     leg = fig.legend(loc="lower center", ncol=3, fontsize=8, frameon=True)
     leg.get_frame().set_facecolor("0.8")
     fig.suptitle(title or f"Contact pressure, peak {peak:.0f} MPa", fontsize=10)
-    return savefig(fig, path, dpi=DPI, tight=False)
+    return savefig(fig, path, dpi=DPI)  # tight: the colour bars' labels inside the picture
 
 
 def plot_section(section: TriField, path: Path, *, vmax: float, point=None, depth: DepthMark | None = None,
@@ -158,7 +158,7 @@ def plot_section(section: TriField, path: Path, *, vmax: float, point=None, dept
     if point is not None:
         fig.legend(loc="lower center", ncol=2, fontsize=8, frameon=True).get_frame().set_facecolor("0.8")
     fig.suptitle(title, fontsize=10)
-    return savefig(fig, path, dpi=DPI, tight=False)
+    return savefig(fig, path, dpi=DPI)  # tight: the colour bars' labels inside the picture
 
 
 def plot_root_stress(panels: list, path: Path, title: str = "", xlabel: str = "axial position [mm]") -> Path:
@@ -176,4 +176,4 @@ def plot_root_stress(panels: list, path: Path, title: str = "", xlabel: str = "a
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.0, 0.5))
     fig.suptitle(title or "Root stress along the fillets of the loaded teeth", fontsize=10)
-    return savefig(fig, path, dpi=DPI, tight=False)
+    return savefig(fig, path, dpi=DPI)  # tight: the colour bars' labels inside the picture

@@ -36,8 +36,8 @@ __all__ = ["CLIP_PERCENTILE", "ABOVE_COLOR", "ColourRange", "clip_range", "Mark"
 
 CLIP_PERCENTILE = 99.5  # [%] of the shown nodal values: the top of the colour range
 ABOVE_COLOR = "magenta"  # values above the clipped range
-_BAR = dict(title_font_size=16, label_font_size=13, n_labels=6, fmt="%.0f", vertical=True, position_x=0.88,
-            position_y=0.12, height=0.72, width=0.05, color="black")
+_BAR = dict(title_font_size=18, label_font_size=18, n_labels=6, fmt="%.0f", vertical=True, position_x=0.88,
+            position_y=0.12, height=0.72, width=0.05, color="black", background_color="white", fill=True)
 
 
 @dataclass(frozen=True)

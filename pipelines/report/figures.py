@@ -349,6 +349,17 @@ class Pictures:
     colour: object  # the ColourRange of the von Mises pictures
 
 
+def share_text(summary: dict, interface: str, member: str) -> str:
+    """'member share 1.000, loaded pair sun0-planet0 0.612' (the loaded pair's share where several pairs carry load)."""
+    share = summary["load_share"][interface]["members"][member]
+    teeth = {n: t for n, t in summary["interfaces"][interface].get("teeth", {}).items() if n.startswith(f"{member}/")}
+    loaded = next((n for n, t in teeth.items() if t.get("offset") == 0), None)
+    pair = ""
+    if loaded is not None and len(teeth) > 1:
+        pair = f", loaded pair {loaded.split('/')[-1]} {summary['load_share'][interface]['teeth'][loaded]:.3f}"
+    return f"member share {share:.3f}{pair}"
+
+
 def design_pictures(run: StressRun, out: Path, *, top: float | None = None, show_edges: bool = False,
                     size=(1300, 600)) -> Pictures:
     """All pictures of the module docstring for every interface member, into ``out``.
@@ -373,8 +384,7 @@ def design_pictures(run: StressRun, out: Path, *, top: float | None = None, show
     files, records = {}, {}
     for v in views:
         f = {}
-        share = summary["load_share"][v.name]["members"][v.member]
-        head = f"{v.name}, member {v.member}: load share {share:.3f}"
+        head = f"{v.name}, member {v.member}: " + share_text(summary, v.name, v.member)
         parts = grid.extract_cells(v.cells)
         force = loaded_pair_force(v, summary)
         mark = Mark(tuple(v.point), tuple(v.view), ("loaded pair" if force > 0 else "TCA pair, no load") +
@@ -399,7 +409,7 @@ def design_pictures(run: StressRun, out: Path, *, top: float | None = None, show
         patch = patch_extent(v, mesh, result.contact_pressure)
         ok = surface_contact(v)  # else no ellipse: None in the records
         records[v.stem] = {
-            "interface": v.name, "member": v.member, "load_share": share, "loaded_pair_force_n": force,
+            "interface": v.name, "member": v.member, "load_share": summary["load_share"][v.name]["members"][v.member], "loaded_pair_force_n": force,
             "tca_kind": ContactKind.names.get(int(v.interface.contact.kind), str(v.interface.contact.kind)),
             "fe_peak_pressure_mpa": patch["peak_mpa"], "hertz_p0_mpa": float(hz.p0) if ok else None,
             "fe_patch_length_mm": patch["length_mm"], "hertz_length_mm": 2 * float(hz.a) if ok else None,

@@ -37,11 +37,14 @@ import numpy as np
 
 from tca.pair.analysis import PairTCAResult
 
+from pipelines.analyses.rating import rating_record
+from pipelines.cases.rating import rated_meshes
+from pipelines.jsonio import plain
 from pipelines.models.stress.case import StressCase
 
 from pipelines.models.stress.run import StressRun, run_stress
 
-from pipelines.report.figures import design_pictures, parts_of
+from pipelines.report.figures import design_pictures, parts_of, share_text
 
 __all__ = ["STAGES", "run_pipeline", "add_images", "zone_images", "zone_limits", "write_report", "zone_name"]
 
@@ -123,9 +126,8 @@ def zone_images(summary: dict, mesh, result, out: Path, clim: dict | None = None
     names, peaks = [], {}
     for itf, member, m, sub, r in zones:
         view = _view(m)
-        share = summary["load_share"][itf]["members"][member]
         edge = "edge contact" if m.get("edge_contact") else "no edge contact"
-        cap = f"{itf}, member {member} ({m['slave_body']} flank): load share {share:.3f}, {edge}"
+        cap = f"{itf}, member {member} ({m['slave_body']} flank): {share_text(summary, itf, member)}, {edge}"
         stem = zone_name(itf, member)
         vm = peaks[(itf, member)] = float(np.nanmax(sub.point_data["von_mises"], initial=0.0))
         edges = sub.n_cells <= EDGES_UP_TO
@@ -145,6 +147,58 @@ def zone_images(summary: dict, mesh, result, out: Path, clim: dict | None = None
                     caption=f"{summary.get('title') or summary.get('model')}: max von Mises {summary['max_von_mises_mpa']:.0f} MPa")
     names.append("overview.png")
     return names, peaks
+
+
+def peak_images(run: StressRun, out: Path) -> list[tuple[str, str]]:
+    """A picture of every flagged peak: (file, caption), :func:`pipelines.render.peaks.plot_peak_map`.
+
+    Edge and corner contact peaks: the contact pressure on the slave flank they were recovered on; contact-induced
+    fillet peaks: the largest principal stress on the fillet and the flank above it. Both unrolled onto (axial
+    position, radius) in their gear's frame, the peak circled.
+    """
+    from pipelines.models.stress.headline import gear_coords, gear_frame_part
+    from pipelines.render.peaks import plot_peak_map
+
+    summary, mesh, result, scene = run.summary, run.mesh, run.result, run.scene
+    p = np.nan_to_num(result.contact_pressure)
+    files = []
+
+    def unrolled(part, nodes, at):
+        """(z, r) of the nodes within 0.4 m_n of the peak's radius (the whole face width), the peak's (z, r)."""
+        g = gear_coords(part, mesh.points[nodes])
+        q = gear_coords(part, np.asarray([at], float))[0]
+        r, rq = np.hypot(g[:, 0], g[:, 1]), float(np.hypot(q[0], q[1]))
+        keep = np.abs(r - rq) <= 0.4 * part.gear.module
+        return nodes[keep], g[keep, 2], r[keep], (float(q[2]), rq)
+
+    for k, e in enumerate(summary.get("edge_peaks", [])):
+        cp = next((c for c in run_contacts(run) if c[0] == e["pair"]), None)
+        if cp is None:
+            continue
+        part = gear_frame_part(scene, cp[1])
+        nodes = mesh.face_set_points(cp[1])
+        nodes, z, r, at = unrolled(part, nodes, e["edge_point_mm"])
+        f = f"peak_edge_{k}.png"
+        cap = (f"{e['edge_kind']} of the {e['edge_of']}, pair {e['pair'].split('/')[-1]}: {e['edge_peak_mpa']:.0f} MPa, "
+               f"the pair's smooth peak {e['smooth_peak_mpa']:.0f} MPa; contact pressure on the {part.gear.name} flank")
+        plot_peak_map(z, r, p[nodes], at, out / f, cap, "contact pressure [MPa]")
+        files.append((f, cap + f"; at ({', '.join(f'{x:.2f}' for x in e['edge_point_mm'])}) mm in the fixed frame"))
+    for k, fp in enumerate(summary.get("fillet_peaks", [])):
+        part = gear_frame_part(scene, fp["set"])
+        sets = [fp["set"], fp["set"].replace("fillet_", "flank_")]
+        nodes = np.unique(np.concatenate([mesh.face_set_points(x) for x in sets if x in mesh.face_sets]))
+        nodes, z, r, at = unrolled(part, nodes, fp["point_mm"])
+        f = f"peak_fillet_{k}.png"
+        cap = (f"{fp['cause']} on {fp['set']}: {fp['value_mpa']:.0f} MPa, the fillet away from it "
+               f"{fp['clear_max_mpa']:.0f} MPa; largest principal stress on the fillet and its flank")
+        plot_peak_map(z, r, result.principal[nodes, 0], at, out / f, cap, "largest principal stress [MPa]")
+        files.append((f, cap + f"; at ({', '.join(f'{x:.2f}' for x in fp['point_mm'])}) mm in the fixed frame"))
+    return files
+
+
+def run_contacts(run: StressRun) -> list[tuple[str, str, str]]:
+    """(pair name, slave face set, master face set) of the run's contact pairs."""
+    return [(c["pair"], c["slave_set"], c["master_set"]) for c in run.summary.get("contact_peaks", []) if "slave_set" in c]
 
 
 def _fmt(v, nd=4) -> str:
@@ -197,6 +251,22 @@ def write_report(summary: dict, path: Path) -> Path:
         lines += ["", "ISO 6336-3 method B nominal root stress σ_F0 (whole load on one tooth at its HPSTC, no load "
                   "factors): " + ", ".join(f"{g} {_fmt(v)} MPa" for g, v in iso.items())
                   + f"; FE max fillet stress {_fmt(s.get('max_fillet_stress_mpa'))} MPa ({s.get('max_fillet_set', '')})."]
+    for g, r in s.get("root_stress", {}).items():
+        lines.append(f"- {g}: loaded tooth {r['tooth']} (share {_fmt(r['load_share'])}) at ISO's 30° section "
+                     f"{_fmt(r['critical_section_mpa'])} MPa (mid-face {_fmt(r['critical_section_mid_face_mpa'])}), fillet "
+                     f"maximum away from contact peaks {_fmt(r['fillet_max_mpa'])} MPa")
+    lines.append(f"- smooth contact peak of the loaded pairs {_fmt(s.get('contact_peak_mpa'))} MPa (largest pressure with "
+                 f"edge and corner peaks {_fmt(s.get('max_contact_pressure_mpa'))} MPa)")
+    for e in s.get("edge_peaks", []):
+        lines.append(f"- flagged: {e['edge_kind']} of the {e['edge_of']}, pair {e['pair']}: {_fmt(e['edge_peak_mpa'])} MPa at "
+                     + ", ".join(f"{x:.2f}" for x in e["edge_point_mm"]) + " mm")
+    for p in s.get("fillet_peaks", []):
+        lines.append(f"- flagged: {p['cause']} on {p['set']}: {_fmt(p['value_mpa'])} MPa at "
+                     + ", ".join(f"{x:.2f}" for x in p["point_mm"]) + " mm")
+    if s.get("rating"):
+        from pipelines.report.rating import rating_markdown
+
+        lines += ["", rating_markdown(s["rating"]).replace("# ISO 6336 rating", "## ISO 6336 rating", 1).rstrip()]
     lines += ["", "## Stage times [s]", "", "| stage | wall [s] |", "|---|---|"]
     for k, v in s["stages"].items():
         lines.append(f"| {k} | {v:.2f} |")
@@ -233,6 +303,8 @@ def add_images(run: StressRun, out: Path, clim: dict | None = None, progress=Non
     summary = run.summary
     pics = design_pictures(run, Path(out), top=top, show_edges=show_edges)
     names, peaks = zone_images(summary, run.mesh, run.result, Path(out), clim, overview_range=pics.colour)
+    flagged = peak_images(run, Path(out))
+    names += [f for f, _ in flagged]
     for f in pics.files.values():
         names += list(f.values())
     dt = time.perf_counter() - t1
@@ -242,6 +314,7 @@ def add_images(run: StressRun, out: Path, clim: dict | None = None, progress=Non
     c = pics.colour
     pictures = {"files": pics.files, "records": pics.records, "von_mises_range_mpa": [c.lo, c.hi], "von_mises_shown_max_mpa": c.max,
                 "clipped": c.clipped, "clip_percentile": c.percentile}
+    pictures["peaks"] = [{"file": f, "caption": c} for f, c in flagged]
     s = {**summary, "interfaces": interfaces, "images": names, "pictures": pictures, "files": [*summary["files"], *names]}
     s["stages"] = {**summary["stages"], "images": summary["stages"].get("images", 0.0) + dt}
     return replace(run, summary=_report(s, Path(out), say))
@@ -276,7 +349,8 @@ def run_pipeline(case: StressCase, out: Path, progress=None, clim: dict | None =
         g = case.pair
         plots.append(plot_contact_paths(run.tca, out / "tca_paths.png", (g.gear1.name, g.gear2.name)).name)
     stages["images"] = time.perf_counter() - t1
-    s = {**s, "images": [], "plots": plots, "files": ["result.vtu", "report.md", "summary.json", *plots], "stages": stages}
+    s = {**s, "images": [], "plots": plots, "files": ["result.vtu", "report.md", "summary.json", *plots], "stages": stages,
+         "rating": plain(rating_record(rated_meshes(case)))}
     if images:
         return add_images(replace(run, summary=s), out, clim, progress, show_edges=show_edges)
     return replace(run, summary=_report(s, out, say))

@@ -45,6 +45,10 @@ With :math:`w = F_t K_A K_\gamma / b` [N/mm], the effective deviations :math:`f_
 
 Without specified tip relief, :math:`C_a` is the running-in amount
 :math:`C_{ay} = \frac1{18}(\sigma_{H\lim}/97 - 18.45)^2 + 1.5` µm of each gear (mean of the two) (D11).
+ISO 6336-1:2006's numbering of these, as quoted in the comments of the open-source ``gfsReboucas/Drivetrain``
+(``ISO_6336.m``; the standard's text itself was not available): (D1), (D2) clause 6.5.9, Eq. (30); (D3) Eqs. (6), (9);
+(D4) Eqs. (15)-(17); (D5) Eqs. (11), (12); (D6) clause 6.5.4, Eqs. (13), (14); (D7) clause 6.5.5, Eq. (20); (D9)
+clause 6.5.6, Eq. (21); (D8) clause 6.5.7, Eq. (22); (D10) Table 8.
 (D1)-(D11) reproduce the m_red, n_E1, N and K_v of a KISSsoft 03/2017 report (parallel helical and planetary stages)
 and K_v = 1.003 of ISO/TR 6336-30 Example 1 (tests). The main resonance range (D7) is rated with a warning.
 """

@@ -14,14 +14,25 @@ Contact lines. Each pair's line runs through its point along t, cut into slices 
 
 and only slices on both flanks (inside their face grids) with g_s ≤ ``reach`` are kept.
 
+Modelled teeth. Pair k' lies on model tooth -(k' - k) of each gear's condensed model, which is
+centred on the pair in contact; a pair with slices outside the model is listed in ``dropped``.
+:func:`teeth_in_reach` counts the teeth a model needs so that there is none: with ε_α + ε_β > 2 a
+pair two pitches from the pair in contact can touch (three teeth are not enough).
+
 Compliance of slice s under the slice loads F [N]:
 
     δ_s = sum_t W_st F_t + δ_loc(w_s),   W = sum_i A_i C_i A_i^T,  w_s = F_s / Δs [N/mm],
 
 A_i the bilinear weights of the slice points on gear i's flank grid and C_i its condensed
 compliance (:mod:`pipelines.models.ltca.compliance`, global part), δ_loc the Hertzian flattening of both
-bodies (:func:`pipelines.models.ltca.compliance.flattening`, constant c) with the Hertz half-width b_s = (8 w_s R (1 - ν²) / (π E))^(1/2), R = 1/λ2 (Johnson 1985,
+bodies (:func:`pipelines.models.ltca.compliance.flattening`, constant c) with the Hertz half-width b_s = (8 w_s R_s (1 - ν²) / (π E))^(1/2), R_s = 1/λ2 (Johnson 1985,
 Eq. 4.43 for two cylinders of one material).
+
+Curvatures of a slice. λ1 ≤ λ2 are those of the slice's own two points (:func:`_curvatures`), not the
+pair's TCA point's: a helical contact line crosses the whole profile, and across it λ2 =
+cos β_b (1/ρ1 + 1/ρ2) (ρ_i the transverse roll lengths) grows from the pinion's tip to its root (by a
+factor 2.3 along the lines of ltca_helical_crowned.toml; with the value of a TCA point at the pinion's tip the
+slice pressures there were up to 34 % low).
 
 Contact problem (linear complementarity with torque balance). The driven gear turns rigidly by
 Δ [rad] against the torque T [N mm]:
@@ -40,8 +51,8 @@ load per unit length of the line is w(ξ) = (π/2) p(ξ) b(ξ) with p(ξ) = p0 (
 b(ξ) = b (1 - ξ²/a²)^(1/2), so p/b = p0/b =: κ along the whole line, a constant of the curvatures
 and the material alone (p0 and b both grow as P^(1/3)), and
 
-    p_s = (2 κ w_s / π)^(1/2),      κ = p0 / b of the pair's Hertz ellipse (:func:`hertz_kappa`,
-                                    Johnson 1985, Eqs. 4.39–4.40),
+    p_s = (2 κ_s w_s / π)^(1/2),    κ_s = p0 / b of the Hertz ellipse of the slice's curvatures
+                                    (:func:`hertz_kappa`, Johnson 1985, Eqs. 4.39–4.40),
 
 which is exact for a Hertzian load distribution and becomes the line-contact value
 (w E* / (π R))^(1/2), κ = E* λ2 / 2, when λ1 → 0. (The line-contact value alone, which ignores the
@@ -52,6 +63,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import scipy.sparse as sp
@@ -69,7 +81,8 @@ from tca.pair.te import mesh_contact, tied_branches
 from pipelines.models.ltca.compliance import flattening
 from pipelines.models.stress.sizing import hertz_contact
 
-__all__ = ["ContactLines", "contact_lines", "separation", "edge_slices", "hertz_kappa", "LoadedContact", "solve_contact"]
+__all__ = ["Meshing", "ContactLines", "PairSlices", "pair_slices", "loaded_branch", "contact_lines", "teeth_in_reach",
+           "separation", "edge_slices", "hertz_kappa", "LoadedContact", "solve_contact"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -87,7 +100,7 @@ class ContactLines:
     gap: np.ndarray  # (S,) initial separation [mm]
     arm: np.ndarray  # (S,) |m2_s| [mm]
     radius: np.ndarray  # (S,) R = 1/λ2 [mm]
-    kappa: np.ndarray  # (S,) p0/b of the pair's Hertz ellipse [MPa/mm] (module docstring)
+    kappa: np.ndarray  # (S,) p0/b of the Hertz ellipse of the slice's curvatures [MPa/mm] (module docstring)
     depth: np.ndarray  # (S, 2) distance to the teeth's centre planes [mm]
     ds: float  # slice length [mm] (nominal)
     W: np.ndarray  # (S, S) global compliance [mm/N]
@@ -122,31 +135,53 @@ def _rotz(a: float) -> np.ndarray:
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
-def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: float, reach: float,
-                  material: Material) -> ContactLines:
-    """Slices of the pairs of teeth within ``reach`` [mm] at driver angle ``phi`` [rad] (module docstring);
-    the ``material`` (E [MPa], ν) for the pressure law of the slices."""
-    fc1, fc2 = flanks
+class PairSlices(NamedTuple):
+    """The slices of one pair of teeth within reach (pair frame), before they are put on the flank grids."""
+
+    kk: int  # branch of the pair
+    d: int  # offset from the pair in contact, kk - k: world tooth -kk is model tooth -d
+    phr: float  # reference-pair driver angle phi - kk p1 [rad]
+    ph2c: float  # driven-gear angle where the loaded pair touches [rad]
+    arm_c: float  # |m2| at the pair's TCA point [mm]
+    l1: float  # relative curvatures λ1 <= λ2 [1/mm]
+    l2: float
+    xi: np.ndarray  # (S,) along the line or boundary [mm]
+    xs: np.ndarray  # (S, 3) gear-1 points
+    xs2: np.ndarray  # (S, 3) gear-2 points
+    n: np.ndarray  # (S, 3) unit normal out of gear 1's tooth
+    gap: np.ndarray  # (S,) exact separation [mm]
+    touching: np.ndarray  # (S,) on both working areas and within reach
+    length: np.ndarray  # (S,) [mm]
+    edge: np.ndarray  # (S,) boundary code (0 on a line)
+    lam: np.ndarray  # (S, 2) relative curvatures λ1 <= λ2 of each slice's two points [1/mm]
+
+
+def loaded_branch(pair: GearPair, mte: MeshTE, phi: float) -> tuple[int, float, np.ndarray, np.ndarray]:
+    """The branch in contact at driver angle ``phi`` [rad] (ties of conjugate flanks resolved as everywhere,
+    :func:`tca.pair.te.mesh_contact`), its Δφ2 [rad], and the values and indices of all branches."""
     val, ks = mte.branches(np.array([phi], float))
     val = val[0]
     te = float(val.max())
     if not math.isfinite(te):
         raise GeometryError(f"{pair.gear1.name}-{pair.gear2.name}", "no contact", f"at phi = {math.degrees(phi):.6f} deg")
-    # the pair in contact; ties (conjugate flanks) resolved as everywhere (tca.pair.te.mesh_contact)
     tied = tied_branches(pair, val).sum() > 1
     k = mesh_contact(mte.result, float(phi)).k if tied else int(ks[int(np.argmax(val))])
+    return k, te, val, ks
+
+
+def pair_slices(pair: GearPair, mte: MeshTE, phi: float, ds: float, reach: float, offsets=None, loaded=None):
+    """The pairs of teeth within ``reach`` [mm] at driver angle ``phi`` [rad] that have slices (module docstring),
+    the pair in contact first, as :class:`PairSlices`; ``offsets``: a predicate on the offset d from the pair in
+    contact (the pairs it rejects are not cut); ``loaded``: :func:`loaded_branch` at phi if known."""
+    k, te, val, ks = loaded if loaded is not None else loaded_branch(pair, mte, phi)
     m1, m2 = pair.mounts()
     f1, f2 = PlacedFlank(pair.gear1, pair.side1, m1), PlacedFlank(pair.gear2, pair.side2, m2)
-    p1, p2 = 2 * math.pi / pair.gear1.teeth, 2 * math.pi / pair.gear2.teeth
-    N1, N2 = pair.gear1.teeth, pair.gear2.teeth
+    p1 = 2 * math.pi / pair.gear1.teeth
     B = max(pair.gear1.face_width, pair.gear2.face_width)
-    rows = []
-    branches, teeth, dropped = [], [], []
-    arm0 = float("nan")
     order = sorted(range(len(ks)), key=lambda i: (ks[i] != k, abs(ks[i] - k)))  # the loaded pair first
     for i in order:
         kk = int(ks[i])
-        if not math.isfinite(val[i]):
+        if not math.isfinite(val[i]) or (offsets is not None and not offsets(kk - k)):
             continue
         gam = te - float(val[i])
         phr = phi - kk * p1
@@ -169,16 +204,11 @@ def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: fl
         arm_c = abs(float(np.cross(x0 - m2.origin, n) @ m2.axis))
         if gam * arm_c > reach:
             continue
-        d = kk - k  # model teeth: world tooth -kk is model tooth k - kk
-        j1, j2 = (-d) % N1, (-d) % N2
-        if j1 not in fc1.teeth or j2 not in fc2.teeth:
-            dropped.append(kk)
-            continue
         ph2c = pair.ratio * phr + te  # the driven gear where the loaded pair touches
         kind = _ref_kind(mte, phr)
         parts = []
         L = min(B, math.sqrt(2 * max(reach - gam * arm_c, 0.0) / l1) if l1 > 0 else B)
-        line = _line_slices(f1, f2, par, x0, t, L, ds, phr, ph2c, gam * arm_c)
+        line = _line_slices(Meshing(f1, f2, phr, ph2c, par, gam * arm_c), x0, t, L, ds)
         if line is not None:  # the TCA point on both working areas: the line through it
             parts.append(line)
         if kind != ContactKind.SURFACE:  # an edge contact, or a tangency beyond a boundary: the boundaries too
@@ -190,27 +220,53 @@ def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: fl
                 parts.append(eg)
         if not parts:
             continue
-        xi, xs, xs2, n_s, g, conv, seg, edge = (np.concatenate([q[j] for q in parts]) for j in range(8))
-        arm = np.abs(np.einsum("ij,ij->i", np.cross(xs - m2.origin, n_s), np.broadcast_to(m2.axis, xs.shape)))
+        xi, xs, xs2, n_s, g, conv, seg, edge, lam = (np.concatenate([q[j] for q in parts]) for j in range(9))
+        bad = ~(np.isfinite(lam).all(1) & (lam[:, 1] > 0))  # the pair's curvatures where a slice's are not convex
+        lam[bad] = (l1, l2)
+        yield PairSlices(kk, kk - k, phr, ph2c, arm_c, l1, l2, xi, xs, xs2, n_s, g, conv & (g <= reach), seg, edge, lam)
+
+
+def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: float, reach: float,
+                  material: Material) -> ContactLines:
+    """Slices of the pairs of teeth within ``reach`` [mm] at driver angle ``phi`` [rad] (module docstring);
+    the ``material`` (E [MPa], ν) for the pressure law of the slices. Pairs with slices outside the modelled teeth are
+    listed in ``dropped`` (:func:`teeth_in_reach` sizes the model so that there are none)."""
+    fc1, fc2 = flanks
+    m1, m2 = pair.mounts()
+    p1, p2 = 2 * math.pi / pair.gear1.teeth, 2 * math.pi / pair.gear2.teeth
+    N1, N2 = pair.gear1.teeth, pair.gear2.teeth
+    rows = []
+    branches, teeth, dropped = [], [], []
+    arm0 = float("nan")
+    loaded = loaded_branch(pair, mte, phi)
+    k, te = loaded[0], loaded[1]
+    for q in pair_slices(pair, mte, phi, ds, reach, loaded=loaded):
+        kk, d = q.kk, q.d
+        if (-d) % N1 not in fc1.teeth or (-d) % N2 not in fc2.teeth:  # world tooth -kk is model tooth -d
+            if q.touching.any():
+                dropped.append(kk)
+            continue
+        arm = np.abs(np.einsum("ij,ij->i", np.cross(q.xs - m2.origin, q.n), np.broadcast_to(m2.axis, q.xs.shape)))
         # slice points in each model's gear frame, on the model tooth of this pair
-        R1, _ = m1.rotation(phr)
-        R2, _ = m2.rotation(ph2c)
-        xg1 = (xs - m1.origin) @ R1 @ _rotz(-d * p1).T
-        xg2 = (xs2 - m2.origin) @ R2 @ _rotz(-d * p2).T
-        # on the working areas (``conv``, exact); the flank grids' faces for the compliance (the faceted grid
+        R1, _ = m1.rotation(q.phr)
+        R2, _ = m2.rotation(q.ph2c)
+        xg1 = (q.xs - m1.origin) @ R1 @ _rotz(-d * p1).T
+        xg2 = (q.xs2 - m2.origin) @ R2 @ _rotz(-d * p2).T
+        # on the working areas (``touching``, exact); the flank grids' faces for the compliance (the faceted grid
         # approximates the boundary curves: a face within EDGE_SLACK of a face size)
         loc1, loc2 = fc1.locate(xg1, EDGE_SLACK), fc2.locate(xg2, EDGE_SLACK)
-        ok = conv & loc1.inside & loc2.inside & (g <= reach)
+        ok = q.touching & loc1.inside & loc2.inside
         if not ok.any():
             continue
-        if kk == k:
-            arm0 = arm_c if not edge.any() else float(arm[ok][np.argmin(g[ok])])
+        if d == 0:
+            arm0 = q.arm_c if not q.edge.any() else float(arm[ok][np.argmin(q.gap[ok])])
         idx = len(branches)
         branches.append(kk)
         teeth.append((int((-kk) % N1), int((-kk) % N2)))
-        rows.append((idx, xi[ok], xs[ok], g[ok], arm[ok], np.full(ok.sum(), 1.0 / l2),
+        lam = q.lam[ok]
+        rows.append((idx, q.xi[ok], q.xs[ok], q.gap[ok], arm[ok], 1.0 / lam[:, 1],
                      np.stack([loc1.depth[ok], loc2.depth[ok]], 1), loc1, loc2, ok,
-                     np.full(ok.sum(), hertz_kappa(l1, l2, material)), seg[ok], edge[ok]))
+                     np.array([hertz_kappa(a, b, material) for a, b in lam]), q.length[ok], q.edge[ok]))
     if not rows or branches[0] != k:
         raise GeometryError(f"{pair.gear1.name}-{pair.gear2.name}", "contact line",
                             f"the loaded pair at phi = {math.degrees(phi):.6f} deg is not on the modelled flanks")
@@ -222,6 +278,23 @@ def contact_lines(pair: GearPair, mte: MeshTE, phi: float, flanks: tuple, ds: fl
     W = 0.5 * (W + W.T)
     return ContactLines(float(phi), te, k, tuple(branches), tuple(teeth), pidx, cat(1), cat(2), cat(3), cat(4), cat(5),
                         cat(10), cat(6), float(ds), W, arm0, tuple(dropped), cat(11), cat(12))
+
+
+def teeth_in_reach(pair: GearPair, mte: MeshTE, phis, ds: float, reach: float, teeth: int = 1) -> int:
+    """Teeth per gear that a model centred on the pair in contact needs to hold every pair of teeth with slices
+    within ``reach`` [mm] (:func:`pair_slices`) at the driver angles ``phis`` [rad]: 2 max|d| + 1, at least
+    ``teeth`` (the pairs inside that model are not cut again).
+
+    With ε_α + ε_β > 2 a third pair may touch on either side of the pair in contact: the crowned helical pair of
+    ltca_helical_crowned.toml (ε_γ = 2.7) has, at φ1 = -10.565°, a pair two pitches away 1.6 µm from contact,
+    which a three-tooth model left out.
+    """
+    half = (teeth - 1) // 2
+    for phi in np.asarray(phis, float):
+        for q in pair_slices(pair, mte, float(phi), ds, reach, offsets=lambda d: abs(d) > half):
+            if q.touching.any():
+                half = max(half, abs(q.d))
+    return 2 * half + 1
 
 
 def hertz_kappa(l1: float, l2: float, material: Material) -> float:
@@ -245,19 +318,31 @@ BOUNDARY_TOL = 1e-6  # [mm] a point this close to a boundary lies on it (an edge
 EDGE_SLACK = 0.25  # fraction of a grid face beyond the border within which a boundary point is on its flank grid
 
 
+@dataclass(frozen=True, eq=False)
+class Meshing:
+    """Two placed flanks at the angles where a pair of teeth touches, and where its solves start:
+    ``par`` (u1, v1, u2, v2) [mm] a point near the contact, ``gap0`` [mm] a starting separation."""
+
+    f1: PlacedFlank
+    f2: PlacedFlank
+    phi1: float  # [rad]
+    phi2: float  # [rad]
+    par: np.ndarray
+    gap0: float = 0.0
+
+
 def in_area(f: PlacedFlank, uv: np.ndarray, tol: float = BOUNDARY_TOL) -> np.ndarray:
     """Points (u, v) (S, 2) [mm] of flank f inside its working area (within ``tol`` [mm] of it)."""
     return area_margin(f, uv) <= tol
 
 
-def _line_slices(f1, f2, par, x0, t, L: float, ds: float, phi1: float, phi2: float, gap0: float):
+def _line_slices(m: Meshing, x0, t, L: float, ds: float):
     """Slices of the line through the reference point x0 along t [mm], inside both working areas and
     within L of x0, cut into equal slices of about ds ending on the area boundaries (:func:`_clip`);
     None when x0 is not on both working areas. Same tuple as :func:`edge_slices` (edge code 0)."""
     ns = int(math.ceil(L / ds)) + 1
     xi = ds * np.arange(-ns, ns + 1)
-    *_, conv, margin = separation(f1, f2, par, x0[None, :] + xi[:, None] * t[None, :], phi1, phi2, gap0,
-                                  with_margin=True)
+    *_, conv, margin = separation(m, x0[None, :] + xi[:, None] * t[None, :], with_margin=True)
     if not (conv[ns] and margin[ns] <= BOUNDARY_TOL):
         return None
     lo, hi = _clip(xi, margin, conv, ns, ds)
@@ -265,9 +350,9 @@ def _line_slices(f1, f2, par, x0, t, L: float, ds: float, phi1: float, phi2: flo
     seg_len = (hi - lo) / n_sl
     xi = lo + seg_len * (np.arange(n_sl) + 0.5)
     xl = x0[None, :] + xi[:, None] * t[None, :]
-    xs, n_s, xs2, g, conv = separation(f1, f2, par, xl, phi1, phi2, gap0)
+    xs, n_s, xs2, g, conv, lam = separation(m, xl, with_curvature=True)
     xs, xs2 = np.where(conv[:, None], xs, xl), np.where(conv[:, None], xs2, xl)
-    return xi, xs, xs2, n_s, g, conv, np.full(len(xi), seg_len), np.zeros(len(xi), int)
+    return xi, xs, xs2, n_s, g, conv, np.full(len(xi), seg_len), np.zeros(len(xi), int), lam
 
 
 def _clip(xi: np.ndarray, margin: np.ndarray, conv: np.ndarray, i0: int, ds: float) -> tuple[float, float]:
@@ -321,8 +406,8 @@ def edge_slices(f1: PlacedFlank, f2: PlacedFlank, par, phi1: float, phi2: float,
     is its distance from the other flank along that flank's normal (:func:`tca.contact.systems.foot_points`).
     Returns xi (arc length along the boundary from its start: z_min for a tip, the form circle for a face
     end), gear-1 and gear-2 points (S, 3), the unit
-    normal out of gear 1's tooth, separations [mm], converged mask, piece lengths [mm] and the
-    boundary code 10 flank + boundary.
+    normal out of gear 1's tooth, separations [mm], converged mask, piece lengths [mm], the
+    boundary code 10 flank + boundary and the relative curvatures (S, 2) of the extended surfaces there.
     """
     out = []
     sides = ((1, f1, f2, phi1, phi2, par[0:2], par[2:4]), (2, f2, f1, phi2, phi1, par[2:4], par[0:2]))
@@ -335,27 +420,29 @@ def edge_slices(f1: PlacedFlank, f2: PlacedFlank, par, phi1: float, phi2: float,
             ok &= in_area(g, uvf)  # the foot point on the other flank's working area
             gap = np.einsum("ij,ij->i", we.r - wg.r, wg.n)
             if which == 1:
-                x1, x2, nrm = we.r, wg.r, -wg.n
+                x1, x2, nrm, lam = we.r, wg.r, -wg.n, _curvatures(we, wg, f1, ok)
             else:
-                x1, x2, nrm = wg.r, we.r, wg.n
-            out.append((sm, x1, x2, nrm, gap, ok, np.full(n, piece), np.full(n, 10 * which + b)))
+                x1, x2, nrm, lam = wg.r, we.r, wg.n, _curvatures(wg, we, f1, ok)
+            out.append((sm, x1, x2, nrm, gap, ok, np.full(n, piece), np.full(n, 10 * which + b), lam))
     if not out:
         e = np.zeros((0, 3))
-        return np.zeros(0), e, e, e, np.zeros(0), np.zeros(0, bool), np.zeros(0), np.zeros(0, int)
-    return tuple(np.concatenate([o[j] for o in out]) for j in range(8))
+        return np.zeros(0), e, e, e, np.zeros(0), np.zeros(0, bool), np.zeros(0), np.zeros(0, int), np.zeros((0, 2))
+    return tuple(np.concatenate([o[j] for o in out]) for j in range(9))
 
 
-def separation(f1: PlacedFlank, f2: PlacedFlank, par, x, phi1: float, phi2: float, gap0: float, tol: float = 1e-10,
-               maxit: int = 30, with_margin: bool = False):
+def separation(m: Meshing, x, tol: float = 1e-10, maxit: int = 30, with_margin: bool = False,
+               with_curvature: bool = False):
     """Exact separation of two flanks along gear 1's normal at the points of gear 1's flank nearest x (S, 3).
 
-    Gear 1's flank at angle phi1, gear 2's at phi2 [rad]; ``par`` (u1, v1, u2, v2) [mm] a point near the
-    line (start of the iterations), ``gap0`` [mm] a starting separation. Foot points P1 on flank 1
+    Gear 1's flank ``m.f1`` at angle ``m.phi1``, gear 2's at ``m.phi2`` [rad]; ``m.par`` (u1, v1, u2, v2) [mm] a
+    point near the line (start of the iterations), ``m.gap0`` [mm] a starting separation. Foot points P1 on flank 1
     (:func:`tca.contact.systems.foot_points`), then the normal line P1 + s n1 meets flank 2
     at P2 (Newton on r2(u2, v2) - P1 - s n1 = 0): s is the separation [mm] (> 0 apart). Returns P1,
     n1, P2, s and the mask of points where both solves converged with both points inside their flanks'
-    working areas (:func:`in_area`); ``with_margin``: also the larger of the two :func:`area_margin`.
+    working areas (:func:`in_area`); ``with_margin``: also the larger of the two :func:`area_margin`;
+    ``with_curvature``: also the relative curvatures λ1 <= λ2 (S, 2) [1/mm] of the two points (:func:`_curvatures`).
     """
+    f1, f2, par, phi1, phi2, gap0 = m.f1, m.f2, m.par, m.phi1, m.phi2, m.gap0
     S = len(x)
     w1, ok1, uv1 = foot_points(f1, par[:2], phi1, x, tol, maxit)
     u, v = uv1[:, 0], uv1[:, 1]
@@ -383,9 +470,23 @@ def separation(f1: PlacedFlank, f2: PlacedFlank, par, x, phi1: float, phi2: floa
             break
     w2, _, _ = f2.world(u2, v2, ph2)
     margin = np.maximum(area_margin(f1, np.stack([u, v], 1)), area_margin(f2, np.stack([u2, v2], 1)))
+    ok = ok1 & ok2 & np.isfinite(sg) & (margin <= BOUNDARY_TOL)
     if with_margin:
-        return P1, n1, w2.r, sg, ok1 & ok2 & np.isfinite(sg) & (margin <= BOUNDARY_TOL), margin
-    return P1, n1, w2.r, sg, ok1 & ok2 & np.isfinite(sg) & (margin <= BOUNDARY_TOL)
+        return P1, n1, w2.r, sg, ok, margin
+    if with_curvature:
+        return P1, n1, w2.r, sg, ok, _curvatures(w1, w2, f1, ok)
+    return P1, n1, w2.r, sg, ok
+
+
+def _curvatures(w1, w2, f1: PlacedFlank, ok: np.ndarray) -> np.ndarray:
+    """Relative curvatures λ1 <= λ2 (S, 2) [1/mm] of gear 1's points w1 and gear 2's points w2 (world), as at the
+    TCA point (:func:`tca.ellipse.contact_ellipse`); NaN outside ``ok`` (points that did not converge on a flank)."""
+    lam = np.full((len(ok), 2), np.nan)
+    ok = ok & np.all([np.isfinite(a).all(axis=1) for a in (*w1, *w2)], axis=0)
+    if ok.any():
+        sub = lambda w: type(w)(*(a[ok] for a in w))  # noqa: E731
+        lam[ok] = contact_ellipse(sub(w1), sub(w2), 1.0, np.broadcast_to(f1.mount.axis, (int(ok.sum()), 3)))[3]
+    return lam
 
 
 def _stack(locs, oks, m):

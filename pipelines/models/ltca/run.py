@@ -28,12 +28,13 @@ from pathlib import Path
 
 import numpy as np
 
+from tca.errors import InputError
 from tca.pair.analysis import ARCSEC, run_pair_tca
 from tca.planetary.subgear import MeshTE
 
 from pipelines.models.ltca.options import LTCAOptions
 from pipelines.models.ltca.compliance import FlankGrid, flank_compliance, strip_constant, weber_constant
-from pipelines.models.ltca.contact import contact_lines, solve_contact
+from pipelines.models.ltca.contact import contact_lines, solve_contact, teeth_in_reach
 from pipelines.models.stress.case import StressCase
 from pipelines.models.stress.model import ELEMENTS
 from pipelines.models.stress.scene import mesh_contact
@@ -67,10 +68,18 @@ def build_model(case: StressCase, opts: LTCAOptions, say=None) -> LTCAModel:
     r = run_pair_tca(pair, case.tca)
     mte = MeshTE.from_result(r)
     t_tca = time.perf_counter() - t0
-    i = int(np.argmax(r.te[:-1] if len(r.te) > 1 else r.te))
-    c = mesh_contact(r, float(r.phi1[i]))
     m = max(pair.gear1.module, pair.gear2.module)
     hu, hz, ds = opts.sizes(m, min(pair.gear1.face_width, pair.gear2.face_width))
+    teeth = teeth_in_reach(pair, mte, r.phi1, ds, opts.reach, case.mesh.teeth)
+    if teeth > case.mesh.teeth:  # every pair within reach modelled, here and in the FE check of the same case
+        if teeth > 9:
+            raise InputError("ltca.reach_um", opts.reach * 1e3, f"a reach whose pairs of teeth fit a model of at most 9 "
+                             f"teeth per gear (they span {teeth})")
+        if say is not None:
+            say(f"build: {teeth} teeth per gear ([mesh] teeth = {case.mesh.teeth}): pairs of teeth within reach span them")
+        case = dataclasses.replace(case, mesh=dataclasses.replace(case.mesh, teeth=teeth))
+    i = int(np.argmax(r.te[:-1] if len(r.te) > 1 else r.te))
+    c = mesh_contact(r, float(r.phi1[i]))
     coarse = hz  # the body's elements as fine as the axial grid (a coarser body is too stiff in bending, docs/ltca.md)
     flanks = []
     for g, side, u in ((pair.gear1, pair.side1, c.params[0]), (pair.gear2, pair.side2, c.params[2])):
@@ -138,6 +147,7 @@ def solve_positions(model: LTCAModel, phis, torques, bar=None) -> tuple[list, li
                    "iterations": s.iterations}
             for name, f in zip(names, s.pair_force):
                 row[f"share.{name}"] = float(f / tot)
+            row.update({f"length_mm.{n}": float(L.length[L.pair == q].sum()) for q, n in enumerate(names)})  # K_Hα
             rows.append(row)
             for j in np.flatnonzero(s.F > 0):
                 prows.append({"phi1_deg": math.degrees(phi), "torque_nm": T * 1e-3, "pair": names[L.pair[j]],
@@ -253,7 +263,7 @@ def run_ltca(case: StressCase, opts: LTCAOptions, out: Path, say=None, bar=None,
     summary = {
         "kind": "ltca", "title": case.title, "model": case.model, "positions": len(phis),
         "torques_nm": [T * 1e-3 for T in torques],
-        "flank_grid_mm": {"profile": hu, "axial": hz, "slice": ds, "teeth": case.mesh.teeth},
+        "flank_grid_mm": {"profile": hu, "axial": hz, "slice": ds, "teeth": model.case.mesh.teeth},
         "local": {"model": opts.local, "constant": model.local},
         "flanks": {fc.gear.name: {k: v for k, v in fc.info.items()} for fc in model.flanks},
         "build_s": model.build_s, "tca_s": model.tca_s, "solve_all_s": t_solve, "timing": timing,

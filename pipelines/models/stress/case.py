@@ -45,6 +45,7 @@ class StressCase:
     tca: TCAOptions = field(default_factory=TCAOptions)
     mesh: SizeRules = field(default_factory=SizeRules)
     fe: FESettings = field(default_factory=FESettings)
+    rating: object = None  # pipelines.cases.rating.RatingSpec of the case's [rating] table; None: not rated
 
     def __post_init__(self):
         if self.model not in MODELS:

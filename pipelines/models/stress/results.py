@@ -47,6 +47,7 @@ from fem.model import FEModel
 from fem.mesh.hexmesh import HexMesh
 from tca.pair.analysis import ARCSEC, ContactKind
 
+from pipelines.models.stress.headline import contact_peaks, fillet_peaks, root_stress
 from pipelines.models.stress.scene import Scene
 
 __all__ = ["EDGE_FRACTION", "boundary_nodes", "pressure_at", "pair_results", "member_teeth", "summarize", "lumped_peak", "loaded_te",
@@ -218,9 +219,12 @@ def summarize(scene: Scene, mesh: HexMesh, model: FEModel, r: FEResult) -> dict:
     rk = kinematic_ratio(scene, interfaces)
     expected_k = expected / scene.ratio * rk
     fil = r.fillet_stress()
-    fil_p = max((v["max_principal_mpa"] for v in fil.values()), default=float("nan"))
+    fil_raw = max((v["max_principal_mpa"] for v in fil.values()), default=float("nan"))
     fil_vm = max((v["max_von_mises_mpa"] for v in fil.values()), default=float("nan"))
-    fil_at = max(fil, key=lambda s: fil[s]["max_principal_mpa"]) if fil else None
+    peaks, clear = fillet_peaks(scene, mesh, r, tuple(fil))  # contact-induced peaks apart (headline.py)
+    fil_at = max(clear, key=clear.get) if clear else None
+    fil_p = clear[fil_at] if fil_at is not None else float("nan")
+    cpeaks = contact_peaks(scene, mesh, model, r, rows)
     imax = int(np.argmax(r.von_mises))
     vm_body = mesh.bodies[int(mesh.cell_body[np.flatnonzero((mesh.cells == imax).any(axis=1))[0]])]
     ip = int(np.argmax(r.contact_pressure))
@@ -248,6 +252,12 @@ def summarize(scene: Scene, mesh: HexMesh, model: FEModel, r: FEResult) -> dict:
         "max_fillet_stress_mpa": fil_p,
         "max_fillet_von_mises_mpa": fil_vm,
         "max_fillet_set": fil_at,
+        "max_fillet_stress_raw_mpa": fil_raw,
+        "fillet_peaks": peaks,
+        "root_stress": root_stress(scene, mesh, r, interfaces),
+        "contact_peak_mpa": max((c["smooth_peak_mpa"] for c in cpeaks), default=0.0),
+        "contact_peaks": cpeaks,
+        "edge_peaks": [c for c in cpeaks if c["edge_flagged"]],
         "torque_balance_error": tb,
         "reaction_torque_nm": actual * 1e-3,
         "expected_reaction_torque_nm": expected * 1e-3,

@@ -70,7 +70,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from pathlib import Path
 
 import numpy as np
@@ -79,6 +79,7 @@ from fem.result import FEResult
 from fem.mesh.hexmesh import HexMesh
 from tca.errors import InputError
 from tca.pair.analysis import ARCSEC, run_pair_tca
+from tca.rating.from_gears import nominal_contact
 from tca.rating.root_stress import tooth_root
 from tca.pair.te import grid_index, position_angle
 from tca.planetary.subgear import phi1_grid, run_subgear_tca
@@ -212,8 +213,15 @@ def _iso6336(case: StressCase) -> dict:
         rec = tooth_root(case.pair, case.torque)
     except InputError as e:
         return {"iso6336_sigma_f0_mpa": None, "iso6336": {"not_covered": str(e)}}
+    try:
+        nc = nominal_contact(case.pair, case.torque, (case.fe.material.E, case.fe.material.nu))
+        rec["contact"] = {**asdict(nc), "note": "ISO 6336-2 sigma_H0 (H1) at the pitch point with Z_eps, no load factors; "
+                          "sigma_H0 Z_B / Z_eps: one pair carrying the whole load at the pinion's inner point of single "
+                          "contact (the wheel's: Z_D)"}
+    except InputError as e:
+        rec["contact"] = {"not_covered": str(e)}
     return {"iso6336_sigma_f0_mpa": {g.name: (rec[g.name] or {}).get("sigma_f0_mpa") for g in (case.pair.gear1, case.pair.gear2)},
-            "iso6336": rec}
+            "iso6336_sigma_h0_mpa": rec["contact"].get("sigma_h0"), "iso6336": rec}
 
 
 def run_stress(case: StressCase, out: Path, progress=None) -> StressRun:
@@ -240,6 +248,7 @@ def run_stress(case: StressCase, out: Path, progress=None) -> StressRun:
     mesh = mesh_scene(scene)
     t_mesh = time.perf_counter() - t1
     say(f"mesh: {len(scene.parts)} parts, {mesh.n_cells} elements, {3 * mesh.n_points} DOF in {t_mesh:.1f} s")
+    check_resources(scene, case.mesh, mesh=mesh)  # the real size, before the solve
     t1 = time.perf_counter()
     say("solve: contact FE (" + case.fe.element + ")")
     r, model, attempts = solve_scene(scene, mesh, case.fe, say)

@@ -156,12 +156,14 @@ class ContactSizes:
     teeth: int = 3
 
 
-def contact_sizes(rules: SizeRules, gear: Gear, hz: HertzContact, angle: float, kind: int) -> ContactSizes:
+def contact_sizes(rules: SizeRules, gear: Gear, hz: HertzContact, angle: float, kind: int,
+                  inclined_lines: bool = False) -> ContactSizes:
     """Sizes and zone of one loaded flank (module docstring of :mod:`pipelines.models.stress.scene`).
 
     A line contact is sized as an ellipse with ``a`` half the contact line, its major axis at the base
     helix angle β_b from the axis: on a spur gear the zone spans the face at one profile position; on a
     helical gear it covers the inclined line, (B/2) tan β_b + b either side of the point along the profile.
+    ``inclined_lines`` (the pair model): a helical line contact whose TCA contact is an edge is sized so too.
     """
     m, r = gear.module, rules.refine
     coarse = (rules.coarse if rules.coarse is not None else 0.75 * m) / r
@@ -170,7 +172,15 @@ def contact_sizes(rules: SizeRules, gear: Gear, hz: HertzContact, angle: float, 
     if hz.line:  # the contact line of an involute helicoid: inclined by the base helix angle across the flank
         beta_b = math.atan(math.tan(gear.helix) * gear.r_b / gear.r_p)
         s, c = math.sin(beta_b), math.cos(beta_b)
-    surface = kind == ContactKind.SURFACE
+    # an inclined (helical) contact line crosses the whole profile and is touched along its length under load
+    # whatever the unloaded TCA contact: with ``inclined_lines`` it is sized as a line for every kind, and where
+    # the TCA point is an edge (a tip, a face end: the line may run from it to its other end) the zone covers the
+    # whole line, 2a, from it. (With the edge rule's zone of b about the point the rest of the line lay in
+    # elements graded up to the coarse size: the full FE of ltca_helical_crowned.toml was 15.6 % too compliant.)
+    # On a spur gear the line runs along the axis at one profile position: the edge rule's zone covers it, and
+    # its axial levels refine toward the edge.
+    inclined_edge = inclined_lines and hz.line and s > 1e-12 and kind != ContactKind.SURFACE
+    surface = kind == ContactKind.SURFACE or inclined_edge
     # a line contact's band is resolved one step finer (b/4: nodal peak within 5 % of Hertz at refine 1, docs)
     contact = rules.contact if rules.contact is not None else b / (4.0 if hz.line else 3.0)
     if rules.axial is not None:
@@ -185,7 +195,8 @@ def contact_sizes(rules: SizeRules, gear: Gear, hz: HertzContact, angle: float, 
     # a resolution of the flank geometry (facet sag against the elastic approach), not of a stress gradient:
     # coarser models (refine < 1) keep it, finer ones refine it too
     neighbour = min((rules.neighbour if rules.neighbour is not None else NEIGHBOUR * m) / max(r, 1.0), coarse)
-    ext_u = rules.zone * (a * s + b * c) if surface else rules.zone * b
-    ext_z = rules.zone * (a * c + b * s) if surface else 0.0
+    half = 2.0 * a if inclined_edge else a  # half-length of the zone along the line
+    ext_u = rules.zone * (half * s + b * c) if surface else rules.zone * b
+    ext_z = rules.zone * (half * c + b * s) if surface else 0.0
     return ContactSizes(coarse, contact, axial, fillet, neighbour, rules.rim_depth if rules.rim_depth is not None else 3.0 * m,
                         rules.growth, ext_u, ext_z, rules.teeth)

@@ -147,8 +147,9 @@ def test_compare_images(comparison):
         assert (out / f).is_file()
     for d in ("new", "conventional"):
         s = json.loads((out / d / "summary.json").read_text())
-        # 4 meshes x (zone von Mises, zone pressure, teeth, deformed, flank, section, root) + overview
-        assert len(s["images"]) == 29
+        # 4 meshes x (zone von Mises, zone pressure, teeth, deformed, flank, section, root) + overview, and a
+        # picture of each flagged peak (issue 25)
+        assert len(s["images"]) == 29 + len(s["pictures"]["peaks"])
         for img in s["images"]:
             assert not image_is_blank(out / d / img), (d, img)
     # loaded members show their contact zone in colour; the conventional design's idle member b shows none
@@ -169,8 +170,11 @@ def test_compare_report_html_side_by_side(comparison, tmp_path):
 
     text = (comparison / "report.html").read_text()
     assert self_contained(text) == []
-    # compare_zones + compare_pressure, 4 meshes x 5 pictures x 2 designs, 2 overviews
-    assert embedded_images(text) == 2 + 4 * 5 * 2 + 2
+    # compare_zones + compare_pressure, 4 meshes x 5 pictures x 2 designs, 2 overviews, and each design's pictures
+    # of its flagged peaks (issue 25)
+    peaks = sum(len(json.loads((comparison / d / "summary.json").read_text())["pictures"]["peaks"])
+                for d in ("new", "conventional"))
+    assert embedded_images(text) == 2 + 4 * 5 * 2 + 2 + peaks
     assert text.count('class="grid"') >= 4 * 5
     png = screenshot(comparison / "report.html", tmp_path / "cmp.png", tmp_path)
     assert not image_is_blank(png)
@@ -231,3 +235,12 @@ def test_root_stress_plot_holds_the_models_largest_fillet_stress(pair_run):
     assert len(tension) == 2 and len(root) == 4
     assert max(tension) == pytest.approx(s["max_fillet_stress_mpa"], rel=1e-12)
     assert max(tension) > max(v for k, v in root.items() if "tension" not in k)
+
+
+def test_compare_report_reads_well_at_1400_px(comparison, tmp_path):
+    """The twins' comparison page at 1400 px: no table cut off or overlapping its neighbour (issue 25), the
+    per-design tables one design after the other; Part 1's finding stated (twin drives)."""
+    from tests.pipelines.report.test_report_layout import check_layout
+
+    check_layout(comparison / "report.html", tmp_path)
+    assert "Finding (Part 1" in (comparison / "report.html").read_text()
