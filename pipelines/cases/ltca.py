@@ -11,7 +11,8 @@ Keys of ``[ltca]`` (all optional; every key is checked, unknown keys are rejecte
     reach_um = 50.0               # pairs of teeth separated by more than this (TCA) are left out
     check_positions = 0           # positions also solved by the full contact FE (gearfe stress) for the check
 
-The flank models take ``[mesh] teeth`` of the stress case (rim depth 3 m, elements of the axial size
+Before any work the flank grid's build is planned (:mod:`pipelines.models.ltca.plan`: elements, DOF, memory) and
+refused above ``GEARFE_MAX_MEMORY_GB``. The flank models take ``[mesh] teeth`` of the stress case (rim depth 3 m, elements of the axial size
 away from the flanks) and the material and element of ``[fe]``; the full-FE check runs the stress
 case itself (its ``[mesh]`` and ``[fe]``) at the checked positions.
 """
@@ -24,6 +25,7 @@ from tca.errors import InputError
 from pipelines.cases.schema import Table
 from pipelines.cases.stress import read_stress_case
 from pipelines.models.ltca.options import LOCAL, LTCAOptions
+from pipelines.models.ltca.plan import check_plan
 from pipelines.models.stress.case import StressCase
 
 __all__ = ["read_ltca_case"]
@@ -54,9 +56,13 @@ def _read_ltca(t: Table | None, torque: float) -> LTCAOptions:
 
 
 def read_ltca_case(case: Table) -> tuple[StressCase, LTCAOptions]:
-    """The stress case and the ``[ltca]`` options of a case table; InputError on any bad key or value."""
+    """The stress case and the ``[ltca]`` options of a case table; InputError on any bad key or value, and on a
+    flank grid whose build does not fit in ``GEARFE_MAX_MEMORY_GB`` (:func:`pipelines.models.ltca.plan.check_plan`
+    with ``[mesh] teeth``; checked again once the pairs within reach have set the teeth modelled)."""
     lt = case.table("ltca", required=False)
     sc = read_stress_case(case)
     if sc.model != "pair":
         raise InputError("model", sc.model, "'pair' (gearfe ltca models a gear pair; the twin drive is not supported yet)")
-    return sc, _read_ltca(lt, sc.torque)
+    opts = _read_ltca(lt, sc.torque)
+    check_plan(sc, opts)
+    return sc, opts

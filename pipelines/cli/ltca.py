@@ -6,7 +6,9 @@ gear's flank compliance once from its hexahedral model, then solves the contact 
 teeth within reach at every position and torque. Writes ``results.csv``, ``pressure.csv``,
 ``te_loaded.png``, ``load_share.png``, ``pressure.png``, ``mesh_stiffness.png`` and ``summary.json``
 (with ``check_positions`` > 0 also the check against the full contact FE). Progress on stderr.
-Nothing is written when the case is invalid or a solve fails (exit status 2).
+Nothing is written when the case is invalid, the resource plan exceeds ``GEARFE_MAX_MEMORY_GB`` or a solve
+fails (exit status 2). When the check against the full contact FE misses one of its targets, the results are
+written and the last line names the missed target (exit status 3).
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ import sys
 import time
 from pathlib import Path
 
+from pipelines.cli import EXIT_CHECK
 from pipelines.cli.interrupt import check_interrupted
 from pipelines.cli.outdir import staged_output
 from pipelines.cases.kinds import read_case
@@ -40,8 +43,12 @@ def _say(msg: str) -> None:
 def handle(args) -> int:
     t0 = time.perf_counter()
     _, (case, opts) = read_case(args.case, "ltca")  # bad input fails here, before any output
+    bar = progress_bar("gearfe ltca: positions")
     with staged_output(args.out) as tmp:
-        s = run_ltca(case, opts, Path(tmp), say=_say, bar=progress_bar("gearfe ltca: positions"))
+        try:
+            s = run_ltca(case, opts, Path(tmp), say=_say, bar=bar)
+        finally:
+            bar.close()  # an error raised mid-run starts on a line of its own
         s = {**s, "case": str(args.case), "rating": plain(ltca_rating(case, s, tmp)), "elapsed_s": time.perf_counter() - t0}
         s["files"] = s["files"] + ["summary.json"]
         (Path(tmp) / "summary.json").write_text(json.dumps(s, indent=2) + "\n")
@@ -58,4 +65,10 @@ def handle(args) -> int:
             print(f"  check vs full FE, {k}: worst {v:.4g} (target {s['fe_check']['targets'][k]}: {'met' if m[k] else 'MISSED'})")
     print_rating(s["rating"])
     print(f"results in {args.out}/")
+    missed = [k for k, ok in (s["fe_check"] or {}).get("met", {}).items() if not ok]
+    if missed:
+        w, tg = s["fe_check"]["worst"], s["fe_check"]["targets"]
+        print("gearfe ltca: check failed: " + "; ".join(f"{k} worst {w[k]:.4g} > target {tg[k]}" for k in missed)
+              + f" against the full contact FE (results written to {args.out}/)", file=sys.stderr)
+        return EXIT_CHECK
     return 0
