@@ -206,13 +206,15 @@ def _read_ccx(work: Path, ref: dict, run) -> Quantities:
     for name in ("job.frd", "job.dat"):
         if not (work / name).is_file():
             raise GearfeError(f"ccx: finished without writing {name}")
-    try:
-        blocks = read_frd(work / "job.frd")
-        cf = read_dat_contact(work / "job.dat")
-    except GearfeError:
-        raise
-    except Exception as e:  # noqa: BLE001 - not text, truncated numbers: a damaged result file
-        raise GearfeError(f"ccx: job.frd or job.dat unreadable: {type(e).__name__}: {e}") from None
+    read = {}
+    for name, reader in (("job.frd", read_frd), ("job.dat", read_dat_contact)):
+        try:
+            read[name] = reader(work / name)
+        except GearfeError as e:
+            raise GearfeError(f"ccx: {name} is damaged: {e}") from None
+        except Exception as e:  # noqa: BLE001 - not text, truncated numbers: a damaged result file
+            raise GearfeError(f"ccx: {name} is damaged: {type(e).__name__}: {e}") from None
+    blocks, cf = read["job.frd"], read["job.dat"]
     missing = [k for k in ("DISP", "STRESS", "FORC", "CONTACT") if k not in blocks]
     if missing:
         raise GearfeError(f"ccx: job.frd has no {', '.join(missing)} block(s)")
