@@ -2,7 +2,8 @@
 
 Case keys: ``driver``, ``driven`` (names in ``[gears]``), optional ``center_distance_mm``,
 ``[misalignment]``, ``[tca]`` (see :mod:`pipelines.cases.reader`). Writes ``tca.csv``, ``te.png``,
-``contact_paths.png``. The summary's ``pair_geometry`` holds the pair checks' findings
+``contact_paths.png``. A stress file (``model = "pair"``) or a pair file with a load gives its pair the same
+way (:func:`pipelines.cases.ltca.read_loaded_pair`: its other keys are checked, not used). The summary's ``pair_geometry`` holds the pair checks' findings
 (:func:`tca.pair.checks.check_pair`: the centre distance analysed and where it comes from, backlash,
 tip-root clearances, contact ratios) and ``warnings`` what they warn of (a contact ratio below 1), also
 printed on stderr.
@@ -20,6 +21,7 @@ import numpy as np
 from tca.pair.analysis import ContactKind, run_pair_tca
 from tca.pair.checks import check_pair
 
+from pipelines.cases.ltca import loaded, read_loaded_pair
 from pipelines.cases.reader import read_gears, read_pair, read_tca_options
 from pipelines.render.plots import plot_contact_paths, plot_pair_te
 from pipelines.cases.schema import Table
@@ -28,8 +30,14 @@ __all__ = ["run", "write_pair_csv"]
 
 
 def run(case: Table, out: Path) -> dict:
-    pair, driver, driven = read_pair(case, read_gears(case))
-    opts = read_tca_options(case.table("tca", required=False))
+    """The pair TCA of a pair file, or of the pair of a stress file (its other keys checked and not used)."""
+    if loaded(case):  # a stress file, or a pair file with a load: every key checked, the load not used
+        sc = read_loaded_pair(case)
+        pair, opts = sc.pair, sc.tca
+        driver, driven = pair.gear1.name, pair.gear2.name
+    else:
+        pair, driver, driven = read_pair(case, read_gears(case))
+        opts = read_tca_options(case.table("tca", required=False))
     geo = check_pair(pair)  # remembered from the reader's check: no second computation
     for w in geo.warnings:
         print(f"warning: {w}", file=sys.stderr)

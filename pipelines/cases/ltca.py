@@ -23,12 +23,15 @@ from __future__ import annotations
 from tca.errors import InputError
 
 from pipelines.cases.schema import Table
-from pipelines.cases.stress import read_stress_case
+from pipelines.cases.stress import TORQUE_KEYS, read_stress_case
 from pipelines.models.ltca.options import LOCAL, LTCAOptions
 from pipelines.models.ltca.plan import check_plan
 from pipelines.models.stress.case import StressCase
 
-__all__ = ["read_ltca_case"]
+__all__ = ["read_ltca_case", "LOAD_KEYS", "loaded", "read_loaded_pair"]
+
+# keys of a pair file that only the stress commands use (a pair file with any of them is read in full for gearfe tca)
+LOAD_KEYS = TORQUE_KEYS + ("model", "position", "phi1_deg", "roll_deg", "mesh", "fe", "ltca")
 
 def _read_ltca(t: Table | None, torque: float) -> LTCAOptions:
     if t is None:
@@ -55,7 +58,21 @@ def _read_ltca(t: Table | None, torque: float) -> LTCAOptions:
     return o
 
 
-def read_ltca_case(case: Table) -> tuple[StressCase, LTCAOptions]:
+def loaded(case: Table) -> bool:
+    """Whether a case carries a load (a stress file, or a pair file with any of :data:`LOAD_KEYS`)."""
+    return case.data.get("kind") == "stress" or any(case.has(k) for k in LOAD_KEYS)
+
+
+def read_loaded_pair(case: Table) -> StressCase:
+    """The stress case of a loaded pair file or stress file for gearfe tca (consumes the table): every key checked
+    (``[ltca]`` too, without its resource plan), the twin drive refused (its TCA is a ``planetary`` case)."""
+    model = case.data.get("model", "pair")
+    if model != "pair":
+        raise InputError("model", model, "'pair' for gearfe tca (the twin drive's TCA is a kind = 'planetary' case)")
+    return read_ltca_case(case, plan=False)[0]
+
+
+def read_ltca_case(case: Table, plan: bool = True) -> tuple[StressCase, LTCAOptions]:
     """The stress case and the ``[ltca]`` options of a case table; InputError on any bad key or value, and on a
     flank grid whose build does not fit in ``GEARFE_MAX_MEMORY_GB`` (:func:`pipelines.models.ltca.plan.check_plan`
     with ``[mesh] teeth``; checked again once the pairs within reach have set the teeth modelled)."""
@@ -64,5 +81,6 @@ def read_ltca_case(case: Table) -> tuple[StressCase, LTCAOptions]:
     if sc.model != "pair":
         raise InputError("model", sc.model, "'pair' (gearfe ltca models a gear pair; the twin drive is not supported yet)")
     opts = _read_ltca(lt, sc.torque)
-    check_plan(sc, opts)
+    if plan:
+        check_plan(sc, opts)
     return sc, opts

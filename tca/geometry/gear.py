@@ -64,7 +64,7 @@ class Gear:
     pressure_angle: float  # normal pressure angle [rad]
     face_width: float  # [mm]
     helix: float = 0.0  # helix angle at the pitch cylinder, magnitude [rad]
-    hand: int = 1  # +1 right, -1 left
+    hand: int = 1  # +1 right, -1 left ('right' and 'left' are accepted and stored as +1 and -1)
     reference_helix: float | None = None  # helix of the rack/transverse geometry [rad]
     internal: bool = False
     profile_shift: float = 0.0  # x, positive thickens the tooth
@@ -95,8 +95,10 @@ class Gear:
             raise InputError(f"{f}.face_width_mm", self.face_width, "> 0")
         if not (0 <= self.helix < math.radians(45)):
             raise InputError(f"{f}.helix_deg", math.degrees(self.helix), "in [0, 45)")
-        if self.hand not in (1, -1):
-            raise InputError(f"{f}.hand", self.hand, "'right' (+1) or 'left' (-1)")
+        if isinstance(self.hand, str) and self.hand in ("right", "left"):  # the case file's words, in Python too
+            object.__setattr__(self, "hand", 1 if self.hand == "right" else -1)
+        if isinstance(self.hand, bool) or self.hand not in (1, -1):
+            raise InputError(f"{f}.hand", self.hand, "+1 or 'right', -1 or 'left'")
         if self.reference_helix is not None and not (0 <= self.reference_helix < math.radians(45)):
             raise InputError(f"{f}.reference_helix_deg", math.degrees(self.reference_helix), "in [0, 45)")
         if not (-1.5 <= self.profile_shift <= 1.5):
