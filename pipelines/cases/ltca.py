@@ -23,7 +23,7 @@ from __future__ import annotations
 from tca.errors import InputError
 
 from pipelines.cases.schema import Table
-from pipelines.cases.stress import TORQUE_KEYS, read_stress_case
+from pipelines.cases.stress import TORQUE_KEYS, read_stress_case, read_unloaded_pair
 from pipelines.models.ltca.options import LOCAL, LTCAOptions
 from pipelines.models.ltca.plan import check_plan
 from pipelines.models.stress.case import StressCase
@@ -63,13 +63,21 @@ def loaded(case: Table) -> bool:
     return case.data.get("kind") == "stress" or any(case.has(k) for k in LOAD_KEYS)
 
 
-def read_loaded_pair(case: Table) -> StressCase:
-    """The stress case of a loaded pair file or stress file for gearfe tca (consumes the table): every key checked
-    (``[ltca]`` too, without its resource plan), the twin drive refused (its TCA is a ``planetary`` case)."""
+def read_loaded_pair(case: Table):
+    """(pair, TCA options) of a stress file or a pair file with load keys for gearfe tca (consumes the table): every
+    key checked (``[ltca]`` too, without its resource plan; the torque where one is given), the twin drive refused
+    (its TCA is a ``planetary`` case)."""
     model = case.data.get("model", "pair")
     if model != "pair":
         raise InputError("model", model, "'pair' for gearfe tca (the twin drive's TCA is a kind = 'planetary' case)")
-    return read_ltca_case(case, plan=False)[0]
+    if any(case.has(k) for k in TORQUE_KEYS):
+        sc = read_ltca_case(case, plan=False)[0]
+        return sc.pair, sc.tca
+    lt = case.table("ltca", required=False)
+    pair, tca = read_unloaded_pair(case)
+    if lt is not None:
+        _read_ltca(lt, 1.0)  # the default torques are the case's: none here, and none needed
+    return pair, tca
 
 
 def read_ltca_case(case: Table, plan: bool = True) -> tuple[StressCase, LTCAOptions]:

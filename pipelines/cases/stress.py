@@ -28,13 +28,13 @@ from tca.planetary.train import ShaftErrors
 from pipelines.cases.reader import ARCMIN, read_gears, read_pair, read_tca_options
 from pipelines.cases.schema import Table
 from pipelines.cases.planetary import read_regulation_options, read_train
-from pipelines.cases.rating import with_rating
+from pipelines.cases.rating import read_rating, with_rating
 from pipelines.models.stress.case import MODELS, StressCase
 from pipelines.models.stress.model import FESettings
 from pipelines.models.stress.scene import PHASES
 from pipelines.models.stress.sizing import SizeRules
 
-__all__ = ["read_stress_case", "read_torque", "UNIT_LOAD_MAX_MPA", "TORQUE_KEYS"]
+__all__ = ["read_stress_case", "read_unloaded_pair", "read_torque", "torque_record", "UNIT_LOAD_MAX_MPA", "TORQUE_KEYS"]
 
 UNIT_LOAD_MAX_MPA = 1500.0  # largest nominal unit load F_t / (b m_n) of a stress case (S2)
 TORQUE_KEYS = ("driven_torque_nm", "torque_nm", "driver_torque_nm")
@@ -55,6 +55,16 @@ def read_torque(case: Table, required: bool = True) -> tuple[str, float] | None:
                          f"{', '.join(TORQUE_KEYS)} (torque_nm is the driven gear's)", "missing: this command loads the pair")
     k = given[0]
     return k, case.get(k, float, lo=0.0, lo_open=True, hi=TORQUE_MAX_NM)
+
+
+def torque_record(case: StressCase) -> dict:
+    """The torques of a stress case with the gears they belong to, for every summary: the driven gear's (the ring's
+    in a twin case) and, for a pair, the driver's (S1)."""
+    if case.model != "pair":
+        return {"torque_gear": case.train.ring.name, "driven_torque_nm": case.torque * 1e-3}
+    g1, g2 = case.pair.gear1, case.pair.gear2
+    return {"torque_gear": g2.name, "driven_torque_nm": case.torque * 1e-3,
+            "driver_gear": g1.name, "driver_torque_nm": case.torque * 1e-3 * g1.teeth / g2.teeth}
 
 
 def _driven_torque(key: str, value: float, pair) -> float:
@@ -142,6 +152,22 @@ def _read_position(case: Table):
     else:
         raise InputError("position", v, ", ".join(repr(p) for p in POSITIONS) + " or an integer index of the TCA positions")
     return pos, phi1, roll
+
+
+def read_unloaded_pair(case: Table):
+    """(pair, TCA options) of a pair file without a torque for gearfe tca: its position, ``[mesh]``, ``[fe]`` and
+    ``[rating]`` keys are checked as :func:`read_stress_case` checks them, and not used."""
+    kind = case.get("kind", str, "stress", choices=("stress", "pair"))
+    if kind == "stress" or case.has("model"):
+        case.get("model", str, "pair", choices=("pair",))
+    case.get("title", str, "")
+    _read_position(case)
+    tca = read_tca_options(case.table("tca", required=False))
+    _read_mesh(case.table("mesh", required=False))
+    _read_fe(case.table("fe", required=False))
+    pair, _, _ = read_pair(case, read_gears(case))
+    read_rating(case.table("rating", required=False), (pair.gear1.name, pair.gear2.name), case_has_torque=False)
+    return pair, tca
 
 
 def read_stress_case(case: Table) -> StressCase:

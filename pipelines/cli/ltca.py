@@ -19,6 +19,7 @@ import sys
 import time
 from pathlib import Path
 
+from pipelines.cases.stress import torque_record
 from pipelines.cli import EXIT_CHECK
 from pipelines.cli.interrupt import check_interrupted
 from pipelines.cli.outdir import staged_output
@@ -49,7 +50,7 @@ def handle(args) -> int:
             s = run_ltca(case, opts, Path(tmp), say=_say, bar=bar)
         finally:
             bar.close()  # an error raised mid-run starts on a line of its own
-        s = {**s, "case": str(args.case), "rating": plain(ltca_rating(case, s, tmp)), "elapsed_s": time.perf_counter() - t0}
+        s = {**s, **torque_record(case), "case": str(args.case), "rating": plain(ltca_rating(case, s, tmp)), "elapsed_s": time.perf_counter() - t0}
         s["files"] = s["files"] + ["summary.json"]
         (Path(tmp) / "summary.json").write_text(json.dumps(s, indent=2) + "\n")
     t = s["timing"]

@@ -24,6 +24,7 @@ from pathlib import Path
 from tca.errors import InputError
 from tca.pair.te import POSITIONS
 
+from pipelines.cases.stress import torque_record
 from pipelines.cli.interrupt import check_interrupted
 from pipelines.cases.reader import load_case
 from pipelines.cli.outdir import staged_output
@@ -105,7 +106,7 @@ def handle(args) -> int:
         if getattr(args, "inp", False):
             write_inp_job(Path(tmp), run.scene, run.mesh, run.result, s["solve_s"])
             s = {**s, "files": [*s["files"], "job.inp", "crosscheck_ref.npz", "crosscheck_gearfe.json"]}
-        s = {"kind": "run", "case": str(args.case), **s, "elapsed_s": time.perf_counter() - t0}
+        s = {"kind": "run", "case": str(args.case), **s, **torque_record(case), "elapsed_s": time.perf_counter() - t0}
         s["files"] = [*s["files"], "report.html"]
         write_summary(s, Path(tmp) / "summary.json")
         run_html(s, Path(tmp), Path(args.case).read_text())
