@@ -104,9 +104,33 @@ def parse_case_text(raw: bytes, name: str = "CASE") -> dict:
         raise InputError("CASE", name, "a UTF-8 text file",
                          f"byte 0x{raw[e.start]:02x} on line {line} is not UTF-8: save the file as UTF-8") from None
     try:
-        return tomllib.loads(text)
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
         raise InputError("CASE", name, "a TOML file", f"TOML syntax: {e}") from None
+    except RecursionError:  # arrays or inline tables nested thousands deep
+        raise InputError("CASE", name, f"a TOML file nested at most {MAX_CASE_DEPTH} levels deep",
+                         "nested too deep to parse") from None
+    depth = _depth(data)
+    if depth > MAX_CASE_DEPTH:
+        raise InputError("CASE", name, f"a TOML file nested at most {MAX_CASE_DEPTH} levels deep (tables, arrays)",
+                         f"at least {depth} levels")
+    return data
+
+
+MAX_CASE_DEPTH = 16  # tables and arrays inside one another: a case file has 4 ([gears.sun.tip_relief] = 3)
+
+
+def _depth(data) -> int:
+    """Nesting depth of parsed TOML (dicts and lists), without recursion."""
+    deepest, stack = 0, [(data, 1)]
+    while stack:
+        v, d = stack.pop()
+        deepest = max(deepest, d)
+        if deepest > MAX_CASE_DEPTH:
+            return deepest
+        kids = v.values() if isinstance(v, dict) else v
+        stack.extend((k, d + 1) for k in kids if isinstance(k, (dict, list)))
+    return deepest
 
 
 # plausibility ranges, checked before any geometry (a value outside is most likely in another unit)
