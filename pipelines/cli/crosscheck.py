@@ -1,4 +1,4 @@
-"""gearfe against CalculiX on the same scene: run ccx on DIR/job.inp and tabulate both solvers (issue 13).
+"""gearfe against CalculiX on the same scene: run ccx on DIR/job.inp and tabulate both solvers.
 
 ``gearfe crosscheck DIR`` takes a folder written by ``gearfe stress CASE --out DIR --inp`` (or
 ``gearfe run ... --inp``), runs ``ccx`` on a copy of ``job.inp`` in ``DIR/ccx`` and writes

@@ -1,4 +1,4 @@
-"""Loaded TCA of a gear pair over a mesh cycle from condensed flank compliances (issue 18).
+"""Loaded TCA of a gear pair over a mesh cycle from condensed flank compliances.
 
 ``gearfe ltca CASE.toml --out DIR`` reads a stress case (``kind = "stress"``, ``model = "pair"``) with an
 optional ``[ltca]`` table (positions, torques, flank grid; :mod:`pipelines.cases.ltca`), builds each

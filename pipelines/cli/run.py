@@ -1,4 +1,4 @@
-"""One load case in one command: TCA, position, mesh, contact FE, images and report (issue 7).
+"""One load case in one command: TCA, position, mesh, contact FE, images and report.
 
 ``gearfe run CASE.toml --out DIR`` runs a stress case (``kind = "stress"``, see
 :mod:`pipelines.models.stress.run` for its keys) through every stage and writes into DIR: ``summary.json``

@@ -52,7 +52,7 @@ import numpy as np
 
 from tca.errors import GeometryError, InputError
 from tca.geometry.gear import Gear
-from tca.geometry.involute import backlash, standard_center_distance, working_pressure_angle
+from tca.geometry.involute import backlash, inv, standard_center_distance, working_pressure_angle
 from tca.geometry.profile import envelope_profile
 from tca.pair.gear_pair import GearPair, Misalignment
 
@@ -410,8 +410,18 @@ def _check(pair: GearPair) -> PairGeometry:
     else:
         source = "standard" if azb == a0 else "zero backlash"
         if not math.isfinite(azb):
-            raise InputError(_key(g2, "profile_shift"), g2.profile_shift, "a profile shift sum x1 + x2 that leaves a "
-                             "working pressure angle > 0 (give center_distance_mm)", "no zero-backlash centre distance")
+            # (I3) of tca.geometry.involute with alpha_w -> 0: the largest (internal) or smallest (external) shift sum
+            at = g1.transverse_pressure_angle
+            z_int = g1.teeth if g1.internal else g2.teeth
+            z_ext = g2.teeth if g1.internal else g1.teeth
+            if pair.kind != "external":
+                bound = f"<= {inv(at) * (z_int - z_ext) / (2 * math.tan(g1.pressure_angle)):.4f}"
+            else:
+                bound = f">= {-inv(at) * (g1.teeth + g2.teeth) / (2 * math.tan(g1.pressure_angle)):.4f}"
+            xs = g1.profile_shift + g2.profile_shift
+            raise InputError(_key(g2, "profile_shift"), g2.profile_shift,
+                             f"a profile shift sum x1 + x2 {bound} (inv alpha_w >= 0: some centre distance closes the "
+                             f"backlash)", f"x1 + x2 = {xs:g}: the teeth overlap at every centre distance")
     m1, m2 = pair.mounts() if pair.mount1 is None else (pair.mount1, pair.mount2)
     a = float(np.hypot(*(m2.origin - m1.origin)[:2]))  # with the misalignment d_center
     cd_key = "center_distance_mm" if pair.center_distance is not None else "misalignment.d_center_um"
