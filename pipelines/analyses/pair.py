@@ -32,7 +32,7 @@ __all__ = ["run", "write_pair_csv"]
 def run(case: Table, out: Path) -> dict:
     """The pair TCA of a pair file, or of the pair of a stress file (its other keys checked and not used)."""
     if loaded(case):  # a stress file, or a pair file with a load: every key checked, the load not used
-        pair, opts = read_loaded_pair(case)
+        pair, opts, _ = read_loaded_pair(case)
         driver, driven = pair.gear1.name, pair.gear2.name
     else:
         pair, driver, driven = read_pair(case, read_gears(case))

@@ -28,12 +28,13 @@ from pipelines.models.ltca.options import LOCAL, LTCAOptions
 from pipelines.models.ltca.plan import check_plan
 from pipelines.models.stress.case import StressCase
 
-__all__ = ["read_ltca_case", "LOAD_KEYS", "loaded", "read_loaded_pair"]
+__all__ = ["read_ltca_case", "read_ltca_options", "LOAD_KEYS", "loaded", "read_loaded_pair"]
 
 # keys of a pair file that only the stress commands use (a pair file with any of them is read in full for gearfe tca)
 LOAD_KEYS = TORQUE_KEYS + ("model", "position", "phi1_deg", "roll_deg", "mesh", "fe", "ltca")
 
-def _read_ltca(t: Table | None, torque: float) -> LTCAOptions:
+def read_ltca_options(t: Table | None, torque: float) -> LTCAOptions:
+    """The :class:`LTCAOptions` of an ``[ltca]`` table (module docstring); ``torque`` [N mm] the default torque."""
     if t is None:
         return LTCAOptions(torques=(torque,))
     pos = dict(lo=0.0, lo_open=True, hi=100.0)
@@ -64,7 +65,7 @@ def loaded(case: Table) -> bool:
 
 
 def read_loaded_pair(case: Table):
-    """(pair, TCA options) of a stress file or a pair file with load keys for gearfe tca (consumes the table): every
+    """(pair, TCA options, rating spec or None) of a stress file or a pair file with load keys for gearfe tca (consumes the table): every
     key checked (``[ltca]`` too, without its resource plan; the torque where one is given), the twin drive refused
     (its TCA is a ``planetary`` case)."""
     model = case.data.get("model", "pair")
@@ -72,12 +73,12 @@ def read_loaded_pair(case: Table):
         raise InputError("model", model, "'pair' for gearfe tca (the twin drive's TCA is a kind = 'planetary' case)")
     if any(case.has(k) for k in TORQUE_KEYS):
         sc = read_ltca_case(case, plan=False)[0]
-        return sc.pair, sc.tca
+        return sc.pair, sc.tca, sc.rating
     lt = case.table("ltca", required=False)
-    pair, tca = read_unloaded_pair(case)
+    pair, tca, spec = read_unloaded_pair(case)
     if lt is not None:
-        _read_ltca(lt, 1.0)  # the default torques are the case's: none here, and none needed
-    return pair, tca
+        read_ltca_options(lt, 1.0)  # the default torques are the case's: none here, and none needed
+    return pair, tca, spec
 
 
 def read_ltca_case(case: Table, plan: bool = True) -> tuple[StressCase, LTCAOptions]:
@@ -85,10 +86,10 @@ def read_ltca_case(case: Table, plan: bool = True) -> tuple[StressCase, LTCAOpti
     flank grid whose build does not fit in ``GEARFE_MAX_MEMORY_GB`` (:func:`pipelines.models.ltca.plan.check_plan`
     with ``[mesh] teeth``; checked again once the pairs within reach have set the teeth modelled)."""
     lt = case.table("ltca", required=False)
-    sc = read_stress_case(case)
+    sc = read_stress_case(case, ltca=False)
     if sc.model != "pair":
         raise InputError("model", sc.model, "'pair' (gearfe ltca models a gear pair; the twin drive is not supported yet)")
-    opts = _read_ltca(lt, sc.torque)
+    opts = read_ltca_options(lt, sc.torque)
     if plan:
         check_plan(sc, opts)
     return sc, opts

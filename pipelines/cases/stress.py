@@ -155,8 +155,9 @@ def _read_position(case: Table):
 
 
 def read_unloaded_pair(case: Table):
-    """(pair, TCA options) of a pair file without a torque for gearfe tca: its position, ``[mesh]``, ``[fe]`` and
-    ``[rating]`` keys are checked as :func:`read_stress_case` checks them, and not used."""
+    """(pair, TCA options, rating spec or None) of a pair file without a torque (gearfe tca, gearfe rate): its
+    position, ``[mesh]`` and ``[fe]`` keys are checked as :func:`read_stress_case` checks them, and not used;
+    ``[rating]`` then gives the torque it rates (docs/cases.md)."""
     kind = case.get("kind", str, "stress", choices=("stress", "pair"))
     if kind == "stress" or case.has("model"):
         case.get("model", str, "pair", choices=("pair",))
@@ -166,12 +167,13 @@ def read_unloaded_pair(case: Table):
     _read_mesh(case.table("mesh", required=False))
     _read_fe(case.table("fe", required=False))
     pair, _, _ = read_pair(case, read_gears(case))
-    read_rating(case.table("rating", required=False), (pair.gear1.name, pair.gear2.name), case_has_torque=False)
-    return pair, tca
+    spec = read_rating(case.table("rating", required=False), (pair.gear1.name, pair.gear2.name), case_has_torque=False)
+    return pair, tca, spec
 
 
-def read_stress_case(case: Table) -> StressCase:
-    """A :class:`StressCase` from a case table (module docstring); every key is checked, unknown keys rejected."""
+def read_stress_case(case: Table, ltca: bool = True) -> StressCase:
+    """A :class:`StressCase` from a case table (module docstring); every key is checked, unknown keys rejected.
+    ``ltca``: an ``[ltca]`` table (one file per pair) is checked too, and left unused (gearfe ltca reads it itself)."""
     kind = case.get("kind", str, "stress", choices=("stress", "pair"))
     model = case.get("model", str, "pair", choices=("pair",)) if kind == "pair" else case.get("model", str, choices=MODELS)
     title = case.get("title", str, "")
@@ -212,5 +214,9 @@ def read_stress_case(case: Table) -> StressCase:
                          regulation_tol=ro.tol, regulation_maxiter=ro.max_iterations, member_phase=ro.member_phase, position=pos, phi1=phi1, roll=roll, tca=tca,
                          mesh=mesh, fe=fe)
     out = with_rating(case, out)  # [rating]: ISO 6336 (pipelines.cases.rating)
+    if ltca and case.has("ltca"):
+        from pipelines.cases.ltca import read_ltca_options  # that module reads on top of this one
+
+        read_ltca_options(case.table("ltca"), out.torque)
     case.done()
     return out
