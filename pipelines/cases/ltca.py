@@ -23,7 +23,7 @@ from __future__ import annotations
 from tca.errors import InputError
 
 from pipelines.cases.schema import Table
-from pipelines.cases.stress import TORQUE_KEYS, read_stress_case, read_unloaded_pair
+from pipelines.cases.stress import TORQUE_KEYS, check_unit_load, read_stress_case, read_unloaded_pair
 from pipelines.models.ltca.options import LOCAL, LTCAOptions
 from pipelines.models.ltca.plan import check_plan
 from pipelines.models.stress.case import StressCase
@@ -90,6 +90,8 @@ def read_ltca_case(case: Table, plan: bool = True) -> tuple[StressCase, LTCAOpti
     if sc.model != "pair":
         raise InputError("model", sc.model, "'pair' (gearfe ltca models a gear pair; the twin drive is not supported yet)")
     opts = read_ltca_options(lt, sc.torque)
+    for T in opts.torques:  # every torque of the cycle within the unit load of a stress case
+        check_unit_load("ltca.torques_nm", [x * 1e-3 for x in opts.torques], T * 1e-3, T, sc.pair)
     if plan:
         check_plan(sc, opts)
     return sc, opts

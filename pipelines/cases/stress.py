@@ -34,7 +34,7 @@ from pipelines.models.stress.model import FESettings
 from pipelines.models.stress.scene import PHASES
 from pipelines.models.stress.sizing import SizeRules
 
-__all__ = ["read_stress_case", "read_unloaded_pair", "read_torque", "torque_record", "UNIT_LOAD_MAX_MPA", "TORQUE_KEYS"]
+__all__ = ["read_stress_case", "read_unloaded_pair", "read_torque", "torque_record", "check_unit_load", "UNIT_LOAD_MAX_MPA", "TORQUE_KEYS"]
 
 UNIT_LOAD_MAX_MPA = 1500.0  # largest nominal unit load F_t / (b m_n) of a stress case (S2)
 TORQUE_KEYS = ("driven_torque_nm", "torque_nm", "driver_torque_nm")
@@ -71,14 +71,22 @@ def _driven_torque(key: str, value: float, pair) -> float:
     """The driven gear's torque [N mm] from the torque key (S1), its unit load checked (S2)."""
     g1, g2 = pair.gear1, pair.gear2
     T = value * 1e3 * (g2.teeth / g1.teeth if key == "driver_torque_nm" else 1.0)
+    check_unit_load(key, value, value, T, pair)
+    return T
+
+
+def check_unit_load(key: str, shown, value: float, T: float, pair) -> None:
+    """InputError naming ``key`` (``shown`` as written) when the driven torque T [N mm] (``value`` [N m] as given, on
+    the driver for ``driver_torque_nm``) exceeds the unit load (S2)."""
+    g1, g2 = pair.gear1, pair.gear2
     r2 = 0.5 * g2.teeth * g2.module / math.cos(g2.beta_ref)
     w = T / r2 / (min(g1.face_width, g2.face_width) * g2.module)
     if w > UNIT_LOAD_MAX_MPA:
         hint = f"{value:g} looks like N mm: {value * 1e-3:g} N m?" if w * 1e-3 <= UNIT_LOAD_MAX_MPA else "no steel carries it"
-        raise InputError(key, value, f"a torque whose nominal unit load F_t/(b m_n) <= {UNIT_LOAD_MAX_MPA:g} MPa: "
+        raise InputError(key, shown, f"a torque whose nominal unit load F_t/(b m_n) <= {UNIT_LOAD_MAX_MPA:g} MPa: "
                          f"<= {value * UNIT_LOAD_MAX_MPA / w:.4g} N m on {g1.name if key == 'driver_torque_nm' else g2.name}",
                          f"F_t/(b m_n) = {w:.4g} MPa; {hint}")
-    return T
+
 
 def _um(v: float | None) -> float | None:
     return None if v is None else v * 1e-3

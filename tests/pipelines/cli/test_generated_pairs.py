@@ -5,7 +5,7 @@ work by the pair checks (tca.pair.checks, one InputError line, exit status 2, no
 profile shifts, lead crownings, tip reliefs, end reliefs, small misalignments, without or with a centre distance.
 What runs must be plausible: a finite TE; the stress model's load shares in [0, 1] summing to 1 and its
 reaction torque balancing the applied one within 1 %. The 32 seeds run under ``make bench`` (marker ``bench``,
-some ten minutes on two cores); ``make test`` runs four of them through ``gearfe tca``.
+some ten minutes on two cores); ``make test`` runs two of them through ``gearfe tca``.
 """
 
 import json
@@ -21,7 +21,7 @@ from tests.support.tomlw import dumps
 
 SEEDS = list(range(32))
 GEAR_ERROR = re.compile(r"error: \w+: (undercut|pointed tooth|singular point|interference)")
-FAST = [0, 1, 2, 3]
+FAST = [1, 2]
 
 
 def generated_pair(seed: int) -> dict:
@@ -104,5 +104,6 @@ def test_generated_pair_tca_and_stress(tmp_path, capsys, seed, monkeypatch):
         return
     assert abs(s["torque_balance_error"]) < 0.01
     for name, share in s["load_share"].items():
-        v = list(share["members"].values())
-        assert all(0.0 <= x <= 1.0 for x in v) and abs(sum(v) - 1.0) < 1e-6, (name, share)
+        for part in ("members", "teeth"):
+            v = list(share[part].values())
+            assert all(0.0 <= x <= 1.0 for x in v) and abs(sum(v) - 1.0) < 1e-6, (name, part, share)
