@@ -140,7 +140,7 @@ NOTES = {
     _G + "face_width_mm": f"[{FACE_WIDTH_MODULES[0]:g}, {FACE_WIDTH_MODULES[1]:g}] normal modules, at most 2000",
     _G + "helix_deg": f"0 or [{HELIX_MIN_DEG:g}, {HELIX_MAX_DEG:g})",
     _G + "reference_helix_deg": f"0 or [{HELIX_MIN_DEG:g}, {HELIX_MAX_DEG:g})",
-    _G + "crowning.c_beta_um": "(0, a quarter of the normal tooth thickness]",
+    _G + "crowning.c_beta_um": "(0, min(a quarter of the normal tooth thickness, (b/2)² / (4 r_D))]",
     _G + "tip_relief.amount_um": "(0, a quarter of the top land], at most 0.1 m_n",
     _G + "tip_relief.start_diameter_mm": "between the form circle and the tip circle (exactly one of the two start keys)",
     _G + "tip_relief.start_roll_mm": "a roll length between the form circle and the tip (exactly one of the two start keys)",

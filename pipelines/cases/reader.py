@@ -68,6 +68,7 @@ CASES_DIR = Path(__file__).parent  # the shipped case files sit beside this modu
 
 MAX_CASE_BYTES = 1 << 20
 TIP_RELIEF_MODULES = 0.1  # largest tip relief C_a in normal modules (and a quarter of the top land)
+CROWNING_PLUNGE = 0.5  # largest 2 a_pl r_D of a lead crowning given as c_beta_um (tca.geometry.modifications.crowning)
 CROWNING_THICKNESS = 0.25  # largest lead crowning C_beta: a quarter of the normal tooth thickness s_n  # a case file is a few kB; anything above 1 MiB is not a case file
 
 
@@ -198,9 +199,12 @@ def read_gear(t: Table, name: str) -> Gear:
             raise InputError(f"{t.path}.crowning", ct.data, "either [plunge] or [crowning], not both (the same disk plunging)")
         s_n = module * (0.5 * math.pi + 2 * t.data.get("profile_shift", 0.0) * math.tan(math.radians(alpha))) \
             if isinstance(t.data.get("profile_shift", 0.0), (int, float)) else module * 0.5 * math.pi
-        c_max = round(CROWNING_THICKNESS * s_n * 1e3, 1)  # [um] a quarter of the normal tooth thickness
+        r_d = ct.get("disk_radius_mm", float, 100.0, lo=0.0, lo_open=True, hi=1e5)
+        # [um] a quarter of the normal tooth thickness, and a plunge path at most half as curved as the disk
+        # (2 a_pl r_D <= CROWNING_PLUNGE: the crowned surface's Chebyshev fit converges; the disk's own limit is 1)
+        c_max = round(min(CROWNING_THICKNESS * s_n, CROWNING_PLUNGE * (0.5 * face) ** 2 / (2 * r_d)) * 1e3, 1)
         c_beta = ct.get("c_beta_um", float, lo=0.0, lo_open=True, hi=c_max) * 1e-3
-        plunge = DiskPlunge(ct.get("disk_radius_mm", float, 100.0, lo=0.0, lo_open=True, hi=1e5), c_beta / (0.5 * face) ** 2)
+        plunge = DiskPlunge(r_d, c_beta / (0.5 * face) ** 2)
         ct.done()
     relief = None
     rt = t.table("tip_relief", required=False)

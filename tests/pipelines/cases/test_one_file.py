@@ -68,3 +68,20 @@ def test_stress_files_run_through_gearfe_tca(tmp_path):
     assert main(["tca", STRESS, "--out", str(out)]) == 0
     s = json.loads((out / "summary.json").read_text())
     assert s["driver"] == "pinion" and s["center_distance_mm"] == pytest.approx(0.5 * 4.5 * 43)
+
+
+@pytest.mark.parametrize("face,c_max_um", [(40.0, 1000.0), (10.0, 62.5)])
+def test_documented_crowning_maximum_builds_its_surface(tmp_path, face, c_max_um):
+    # issue 24: a lead crowning at its documented maximum failed later ("Chebyshev fit ... did not converge"); the
+    # maximum is now min(s_n / 4, (b/2)^2 / (4 r_D)): 2 a_pl r_D <= 0.5 (r_D = 100 mm), and one above it is refused
+    data = shipped_data("pipelines/cases/stress_helical_crowned.toml", {"gears.pinion.face_width_mm": face,
+                                                                         "gears.wheel.face_width_mm": face})
+    data["gears"]["pinion"]["crowning"]["c_beta_um"] = c_max_um
+    _, case = read_case(write_case(tmp_path, "max", data), "stress")
+    g = case.pair.gear1
+    for side in (1, -1):
+        assert g.surface(side).fit_error < 1e-9  # the crowned flank's Chebyshev fit at its tolerance
+    data["gears"]["pinion"]["crowning"]["c_beta_um"] = c_max_um + 0.2
+    with pytest.raises(InputError) as e:
+        read_case(write_case(tmp_path, "above", data), "stress")
+    assert e.value.field == "gears.pinion.crowning.c_beta_um" and f"<= {c_max_um:g}" in str(e.value)
