@@ -115,12 +115,7 @@ def build_grid(sweep_path: str | Path) -> tuple[str, list[dict], list[str]]:
         v = a.get("values", list)
         if not v:
             raise InputError(f"{a.path}.values", v, "a non-empty list")
-        seen = set()
-        for x in v:
-            tag = json.dumps(x, sort_keys=True, default=str)
-            if tag in seen:  # the same point twice would race for its folder on a cluster
-                raise InputError(f"{a.path}.values", v, "a list of distinct values", f"{x!r} appears twice")
-            seen.add(tag)
+
         if k in keys:
             raise InputError(f"{a.path}.key", k, "a key not already swept by another axis")
         a.done()
@@ -150,6 +145,14 @@ def build_grid(sweep_path: str | Path) -> tuple[str, list[dict], list[str]]:
     if size > MAX_GRID_POINTS:
         raise InputError("axes", " x ".join(str(len(v)) for v in values),
                          f"a grid of at most {MAX_GRID_POINTS} points (the product of the axes' lengths is {size})")
+    for i, v in enumerate(values[:len(axes)]):
+        seen = set()
+        for x in v:
+            tag = json.dumps(x, sort_keys=True, default=str)
+            if tag in seen:  # the same point twice would race for its folder on a cluster
+                raise InputError(f"axes[{i}].values", x, "distinct values in an axis", "listed twice: two grid points "
+                                 "would be the same case")
+            seen.add(tag)
     points, ids = [], {}
     for combo in itertools.product(*values):
         named = dict(zip(keys, combo))

@@ -50,7 +50,7 @@ def test_duplicated_grid_points_refused(tmp_path, capsys):
     out = tmp_path / "out"
     assert main(["sweep", str(tmp_path / "sweep.toml"), "--out", str(out), "--workers", "2"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "axes[0].values" in err[0] and "appears twice" in err[0]
+    assert len(err) == 1 and "axes[0].values = 0.0 is invalid" in err[0] and "listed twice" in err[0]
     assert not out.exists()
 
 
