@@ -22,6 +22,7 @@ import math
 
 from fem.material import Material
 from tca.errors import InputError
+from tca.pair.checks import check_pair
 from tca.pair.te import POSITIONS
 from tca.planetary.train import ShaftErrors
 
@@ -59,12 +60,14 @@ def read_torque(case: Table, required: bool = True) -> tuple[str, float] | None:
 
 def torque_record(case: StressCase) -> dict:
     """The torques of a stress case with the gears they belong to, for every summary: the driven gear's (the ring's
-    in a twin case) and, for a pair, the driver's (S1)."""
+    in a twin case) and, for a pair, the driver's (S1), with the pair checks' findings (``pair_geometry``: the centre
+    distance and where it comes from, backlash, clearances, contact ratios, :func:`tca.pair.checks.check_pair`)."""
     if case.model != "pair":
         return {"torque_gear": case.train.ring.name, "driven_torque_nm": case.torque * 1e-3}
     g1, g2 = case.pair.gear1, case.pair.gear2
     return {"torque_gear": g2.name, "driven_torque_nm": case.torque * 1e-3,
-            "driver_gear": g1.name, "driver_torque_nm": case.torque * 1e-3 * g1.teeth / g2.teeth}
+            "driver_gear": g1.name, "driver_torque_nm": case.torque * 1e-3 * g1.teeth / g2.teeth,
+            "pair_geometry": check_pair(case.pair).summary()}  # remembered from the reader's check
 
 
 def _driven_torque(key: str, value: float, pair) -> float:

@@ -111,6 +111,9 @@ def handle(args) -> int:
         write_summary(s, Path(tmp) / "summary.json")
         run_html(s, Path(tmp), Path(args.case).read_text())
     width = max(len(k) for k in SHOWN)
+    geo = s.get("pair_geometry")
+    if geo:  # the centre distance analysed and where it comes from (zero backlash of the profile shifts, given)
+        print(f"  {'center_distance_mm':<{width}}  {geo['center_distance_mm']:.6g} ({geo['center_distance_source']})")
     for k in SHOWN:
         v = s.get(k)
         print(f"  {k:<{width}}  {v:.6g}" if isinstance(v, float) else f"  {k:<{width}}  {v}")

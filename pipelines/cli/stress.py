@@ -61,6 +61,9 @@ def handle(args) -> int:
                    "elapsed_s": time.perf_counter() - t0}
         (Path(tmp) / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
     width = max(len(k) for k in SHOWN)
+    geo = summary.get("pair_geometry")
+    if geo:  # the centre distance analysed and where it comes from (zero backlash of the profile shifts, given)
+        print(f"  {'center_distance_mm':<{width}}  {geo['center_distance_mm']:.6g} ({geo['center_distance_source']})")
     for k in SHOWN:
         v = summary.get(k)
         print(f"  {k:<{width}}  {v:.6g}" if isinstance(v, float) else f"  {k:<{width}}  {v}")
