@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 import numpy as np
 
@@ -116,7 +116,7 @@ class Gear:
         if self.end_relief is not None:
             check_amount(self.end_relief, f, self.face_width, self.normal_thickness)
         self.rack  # builds and validates the rack-cutter
-        self._check_flanks()
+        _flanks_checked(self)
 
     # ------------------------------------------------------------------ basic geometry
     @property
@@ -371,3 +371,11 @@ class Gear:
             gt, _ = self.profile(side, np.array(self.area(side).u_tip))
             a[side] = math.atan2(gt[1], gt[0])
         return self.r_tip * (a[1] + a[-1])
+
+
+@lru_cache(maxsize=1024)
+def _flanks_checked(gear: Gear) -> bool:
+    """The design checks of a gear's flanks, once per gear data (a case read by several readers, a sweep's grid
+    points and the pair checks build equal gears again): a gear that fails raises, and is not remembered."""
+    gear._check_flanks()
+    return True
