@@ -111,12 +111,12 @@ def validate_stress(case: dict) -> None:
             raise InputError("position", c.position, f"an index of the TCA grid in [{-n}, {n - 1}]")
 
 
-def second_pair_gap(case, phi1: float) -> float:
-    """Pair model: Δφ2 of the pair in contact minus the next branch at phi1 [rad] (a lower bound, module docstring)."""
-    from tca.pair.analysis import run_pair_tca
+def second_pair_gap(tca, phi1: float) -> float:
+    """Pair model: Δφ2 of the pair in contact minus the next branch at phi1 [rad] (a lower bound, module docstring),
+    from the pair TCA result ``tca`` of the run."""
     from tca.pair.te import mesh_contact
 
-    mc = mesh_contact(run_pair_tca(case.pair, case.tca), phi1)  # next_gap: tca.pair.te (ties of conjugate flanks)
+    mc = mesh_contact(tca, phi1)  # next_gap: tca.pair.te (ties of conjugate flanks)
     return mc.next_gap / abs(mc.arms[1]) if mc.arms[1] else float("inf")
 
 
@@ -126,10 +126,11 @@ def run_point_stress(case_dict: dict, out: Path) -> dict:
     from pipelines.models.stress.run import run_stress
 
     case = read_stress_case(Table(copy.deepcopy(case_dict), ""))
-    s = run_stress(case, Path(out)).summary
+    run = run_stress(case, Path(out))
+    s = run.summary
     s["loaded_te"] = loaded_te(case, s)
     t0 = time.perf_counter()
-    gap = second_pair_gap(case, math.radians(s["position"]["phi1_deg"])) / ARCSEC if case.model == "pair" else None
+    gap = second_pair_gap(run.tca, math.radians(s["position"]["phi1_deg"])) / ARCSEC if case.model == "pair" else None
     s["tca_second_pair_gap_arcsec"] = gap if gap is None or math.isfinite(gap) else None
     s["gap_s"] = time.perf_counter() - t0
     return {"kind": "stress", **s, "files": ["result.vtu", "summary.json"]}
