@@ -28,7 +28,7 @@ base case's choice of position. Positions through a mesh cycle::
                       # tca.steps_per_cycle); column "positions.step" = i
     # or: phi1_deg = [-6.0, -5.5, ...]   plain driving-gear angles (column "phi1_deg")
 
-The positions are the innermost axis. A stress sweep over two or more positions also writes
+The positions are the innermost axis; a ``[positions]`` table alone (no ``[[axes]]``) is a grid too. A stress sweep over two or more positions also writes
 ``DIR/te_loaded.png`` (unloaded TCA TE and loaded TE = TCA TE + FE elastic rotation of the driven
 body, vs φ1) and ``DIR/load_share.png`` (share of the contact force of each modelled tooth pair vs
 φ1), one curve per combination of the other axes.
