@@ -2,19 +2,26 @@
 
 Case keys: ``driver``, ``driven`` (names in ``[gears]``), optional ``center_distance_mm``,
 ``[misalignment]``, ``[tca]`` (see :mod:`pipelines.cases.reader`). Writes ``tca.csv``, ``te.png``,
-``contact_paths.png``.
+``contact_paths.png``. A stress file (``model = "pair"``) or a pair file with a load gives its pair the same
+way (:func:`pipelines.cases.ltca.read_loaded_pair`: its other keys are checked, not used). The summary's ``pair_geometry`` holds the pair checks' findings
+(:func:`tca.pair.checks.check_pair`: the centre distance analysed and where it comes from, backlash,
+tip-root clearances, contact ratios) and ``warnings`` what they warn of (a contact ratio below 1), also
+printed on stderr.
 """
 
 from __future__ import annotations
 
 import csv
 import math
+import sys
 from pathlib import Path
 
 import numpy as np
 
 from tca.pair.analysis import ContactKind, run_pair_tca
+from tca.pair.checks import check_pair
 
+from pipelines.cases.ltca import loaded, read_loaded_pair
 from pipelines.cases.reader import read_gears, read_pair, read_tca_options
 from pipelines.render.plots import plot_contact_paths, plot_pair_te
 from pipelines.cases.schema import Table
@@ -23,8 +30,16 @@ __all__ = ["run", "write_pair_csv"]
 
 
 def run(case: Table, out: Path) -> dict:
-    pair, driver, driven = read_pair(case, read_gears(case))
-    opts = read_tca_options(case.table("tca", required=False))
+    """The pair TCA of a pair file, or of the pair of a stress file (its other keys checked and not used)."""
+    if loaded(case):  # a stress file, or a pair file with a load: every key checked, the load not used
+        pair, opts, _ = read_loaded_pair(case)
+        driver, driven = pair.gear1.name, pair.gear2.name
+    else:
+        pair, driver, driven = read_pair(case, read_gears(case))
+        opts = read_tca_options(case.table("tca", required=False))
+    geo = check_pair(pair)  # remembered from the reader's check: no second computation
+    for w in geo.warnings:
+        print(f"warning: {w}", file=sys.stderr)
     r = run_pair_tca(pair, opts)
     write_pair_csv(r, out / "tca.csv")
     plot_pair_te(r, out / "te.png", title=case.get("title", str, "") or None)
@@ -35,6 +50,9 @@ def run(case: Table, out: Path) -> dict:
         driven=driven,
         ratio=pair.ratio,
         center_distance_mm=pair.E,
+        center_distance_source=geo.source,
+        pair_geometry=geo.summary(),
+        warnings=list(geo.warnings),
         files=["summary.json", "tca.csv", "te.png", "contact_paths.png"],
     )
     return s

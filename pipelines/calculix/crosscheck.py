@@ -28,8 +28,10 @@ node coordinates, node bodies, sets; ``crosscheck_gearfe.json``: gearfe's quanti
 from __future__ import annotations
 
 import json
+import os
 import resource
 import shutil
+import tempfile
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
@@ -44,7 +46,7 @@ from pipelines.calculix.job import CcxJob, CcxOptions, run_ccx, write_job
 from pipelines.calculix.frd import read_dat_contact, read_frd
 
 __all__ = ["Quantities", "NodalResults", "quantities", "von_mises", "principal", "write_reference", "write_inp_job", "crosscheck",
-           "TARGETS", "table"]
+           "TARGETS", "table", "load_reference", "load_gearfe", "check_folder"]
 
 # acceptance targets of issue 13 (relative, except the load shares: absolute)
 TARGETS = {"contact_force_n": 0.005, "reaction_torque_nm": 0.005, "load_share": 0.02, "fillet_max_principal_mpa": 0.03,
@@ -159,41 +161,97 @@ def write_inp_job(out: Path, scene, mesh, result, solve_s: float, formulation: s
 
 
 def load_reference(folder: Path) -> dict:
-    """The arrays written by :func:`write_reference` (InputError if absent)."""
-    f = Path(folder) / "crosscheck_ref.npz"
-    if not f.is_file() or not (Path(folder) / "job.inp").is_file():
+    """The arrays written by :func:`write_reference`; an InputError naming the file when one is absent or damaged."""
+    folder = Path(folder)
+    f = folder / "crosscheck_ref.npz"
+    if not f.is_file() or not (folder / "job.inp").is_file():
         raise InputError("DIR", str(folder), "a folder written by 'gearfe stress CASE --out DIR --inp' (job.inp, crosscheck_ref.npz)")
-    with np.load(f, allow_pickle=False) as z:
-        ref = {k: z[k] for k in z.files}
-    for k in ("pair_names", "pair_slave", "pair_master"):
-        ref[k] = [str(x) for x in ref[k]]
-    ref["bodies"] = [str(x) for x in ref["bodies"]]
+    try:
+        with np.load(f, allow_pickle=False) as z:
+            ref = {k: z[k] for k in z.files}
+        for k in ("pair_names", "pair_slave", "pair_master", "bodies"):
+            ref[k] = [str(x) for x in ref[k]]
+        for k in ("points",):
+            ref[k] = np.asarray(ref[k], float)
+    except Exception as e:  # noqa: BLE001 - zip, npy header, pickle refusal, missing array: all a damaged file
+        raise InputError("DIR", str(folder), "a folder written by 'gearfe stress CASE --out DIR --inp'",
+                         f"crosscheck_ref.npz is damaged: {type(e).__name__}: {e}") from None
     return ref
 
 
-def crosscheck(folder: Path, timeout: float = 3600.0) -> tuple[Quantities, Quantities]:
-    """Run ccx on a copy of DIR/job.inp in DIR/ccx; gearfe's and CalculiX's quantities."""
-    folder = Path(folder)
+def load_gearfe(folder: Path) -> Quantities:
+    """gearfe's quantities (crosscheck_gearfe.json); an InputError naming the file when absent or damaged."""
+    f = Path(folder) / "crosscheck_gearfe.json"
+    try:
+        return Quantities(**json.loads(f.read_text()))
+    except Exception as e:  # noqa: BLE001 - missing, not UTF-8, not JSON, other keys: all a damaged folder
+        raise InputError("DIR", str(folder), "a folder written by 'gearfe stress CASE --out DIR --inp'",
+                         f"crosscheck_gearfe.json is missing or damaged: {type(e).__name__}: {e}") from None
+
+
+def check_folder(folder: Path) -> tuple[dict, Quantities]:
+    """Everything ``gearfe crosscheck DIR`` reads, checked before ccx starts: the reference arrays, gearfe's
+    quantities, and ``DIR/ccx`` (a previous run's folder, replaced; not a file)."""
     ref = load_reference(folder)
-    g = json.loads((folder / "crosscheck_gearfe.json").read_text())
-    gq = Quantities(**g)
-    work = folder / "ccx"
-    work.mkdir(exist_ok=True)
-    shutil.copy(folder / "job.inp", work / "job.inp")
-    run = run_ccx(work / "job.inp", timeout=timeout)
-    blocks = read_frd(work / "job.frd")
+    gq = load_gearfe(folder)
+    work = Path(folder) / "ccx"
+    if (work.exists() or work.is_symlink()) and not (work.is_dir() and not work.is_symlink()):
+        raise InputError("DIR", str(folder), "a folder whose 'ccx' entry is absent or a folder (CalculiX's results)",
+                         f"{work} is a file or a link")
+    return ref, gq
+
+
+def _read_ccx(work: Path, ref: dict, run) -> Quantities:
+    """CalculiX's quantities from job.frd and job.dat in ``work``; GearfeError naming the file when damaged."""
+    for name in ("job.frd", "job.dat"):
+        if not (work / name).is_file():
+            raise GearfeError(f"ccx: finished without writing {name}")
+    read = {}
+    for name, reader in (("job.frd", read_frd), ("job.dat", read_dat_contact)):
+        try:
+            read[name] = reader(work / name)
+        except GearfeError as e:
+            raise GearfeError(f"ccx: {name} is damaged: {e}") from None
+        except Exception as e:  # noqa: BLE001 - not text, truncated numbers: a damaged result file
+            raise GearfeError(f"ccx: {name} is damaged: {type(e).__name__}: {e}") from None
+    blocks, cf = read["job.frd"], read["job.dat"]
     missing = [k for k in ("DISP", "STRESS", "FORC", "CONTACT") if k not in blocks]
     if missing:
         raise GearfeError(f"ccx: job.frd has no {', '.join(missing)} block(s)")
     n = len(ref["points"])
-    cf = read_dat_contact(work / "job.dat")
     pair_force = {}
     for name, slave, master in zip(ref["pair_names"], ref["pair_slave"], ref["pair_master"]):
         # a pair without any contact element in the last iteration is not printed: no force
         pair_force[name] = max(0.0, cf[(slave, master)]["normal_force"]) if (slave, master) in cf else 0.0
-    res = NodalResults(blocks["DISP"].field(n), blocks["STRESS"].field(n), blocks["FORC"].field(n),
-                       blocks["CONTACT"].field(n)[:, 3])
-    cq = quantities(ref, res, "calculix", run.wall_s, run.peak_mb, pair_force=pair_force)
+    try:
+        res = NodalResults(blocks["DISP"].field(n), blocks["STRESS"].field(n), blocks["FORC"].field(n),
+                           blocks["CONTACT"].field(n)[:, 3])
+    except (IndexError, ValueError) as e:
+        raise GearfeError(f"ccx: job.frd does not match the mesh of job.inp ({n} nodes): {e}") from None
+    return quantities(ref, res, "calculix", run.wall_s, run.peak_mb, pair_force=pair_force)
+
+
+def crosscheck(folder: Path, timeout: float = 3600.0, progress=None) -> tuple[Quantities, Quantities]:
+    """Run ccx on a copy of DIR/job.inp; gearfe's and CalculiX's quantities.
+
+    ccx runs in a fresh temporary folder beside ``DIR/ccx``, which replaces ``DIR/ccx`` only once both
+    solvers' quantities are read: on any failure (ccx's error, a damaged result, the time limit, a signal)
+    the temporary folder is removed and nothing is left behind. ``progress(wall_s, peak_mb)`` is called
+    about every 10 s while ccx runs (:func:`pipelines.calculix.job.run_ccx`)."""
+    folder = Path(folder)
+    ref, gq = check_folder(folder)
+    work = Path(tempfile.mkdtemp(prefix=".ccx-", dir=folder))
+    try:
+        shutil.copy(folder / "job.inp", work / "job.inp")
+        run = run_ccx(work / "job.inp", timeout=timeout, progress=progress)
+        cq = _read_ccx(work, ref, run)
+        final = folder / "ccx"
+        if final.is_dir():
+            shutil.rmtree(final)
+        os.replace(work, final)
+    except BaseException:
+        shutil.rmtree(work, ignore_errors=True)
+        raise
     return gq, cq
 
 

@@ -42,6 +42,7 @@ unchanged (how CalculiX solves it: :class:`CcxOptions`); :func:`run_ccx` runs it
 
 from __future__ import annotations
 
+import math
 import os
 import shutil
 import subprocess
@@ -59,7 +60,7 @@ from fem.mesh.hexmesh import HEX_FACES, HexMesh
 from tca.errors import GearfeError, InputError
 
 __all__ = ["CCX_INSTALL", "FORMULATIONS", "CcxOptions", "CcxRigid", "CcxPair", "CcxJob", "pair_penalty", "write_job", "ccx_path",
-           "CcxRun", "run_ccx"]
+           "CcxRun", "run_ccx", "check_timeout", "MAX_TIMEOUT_S", "PROGRESS_S"]
 
 CCX_INSTALL = "apt-get install calculix-ccx"
 FORMULATIONS = {"node": "NODE TO SURFACE", "surface": "SURFACE TO SURFACE"}
@@ -301,12 +302,41 @@ class CcxRun:
     log: str
 
 
-def run_ccx(job: str | Path, threads: int = 1, timeout: float = 3600.0) -> CcxRun:
+PROGRESS_S = 10.0  # [s] between progress calls while ccx runs
+MAX_TIMEOUT_S = 1e6  # [s] the largest time limit of a ccx run (11.6 days)
+
+
+def check_timeout(timeout: float, key: str = "--timeout") -> float:
+    """A time limit of a ccx run in (0, MAX_TIMEOUT_S] s (NaN, infinite, zero and negative refused)."""
+    if not (isinstance(timeout, (int, float)) and math.isfinite(timeout) and 0 < timeout <= MAX_TIMEOUT_S):
+        raise InputError(key, timeout, f"a time limit in (0, {MAX_TIMEOUT_S:g}] s")
+    return float(timeout)
+
+
+def _stop(proc: subprocess.Popen, grace: float = 5.0) -> None:
+    """SIGTERM to ccx, SIGKILL after ``grace`` s, and reap it: no ccx is left running after gearfe."""
+    if proc.poll() is not None:
+        return
+    try:
+        proc.terminate()
+        proc.wait(grace)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.wait()
+    except ProcessLookupError:
+        pass
+
+
+def run_ccx(job: str | Path, threads: int = 1, timeout: float = 3600.0, progress=None) -> CcxRun:
     """Run ``ccx -i <job>`` in the job's folder (log in ``<job>.log``); raise GearfeError when it fails.
 
     The peak memory is the ccx process's own high-water mark of resident memory (``/proc/<pid>/status``
-    VmHWM, polled every 0.05 s), not the Python process's.
+    VmHWM, polled every 0.05 s), not the Python process's. ``progress(wall_s, peak_mb)`` is called every
+    :data:`PROGRESS_S` s while ccx runs (it may raise to stop the run: a signal). Whatever ends the wait
+    (the time limit, SIGINT or SIGTERM raised in the main thread, any exception), ccx is stopped and reaped
+    before the exception goes on.
     """
+    timeout = check_timeout(timeout, "timeout")
     exe = ccx_path()
     job = Path(job)
     env = {**os.environ, "OMP_NUM_THREADS": str(threads), "CCX_NPROC_EQUATION_SOLVER": str(threads)}
@@ -315,18 +345,24 @@ def run_ccx(job: str | Path, threads: int = 1, timeout: float = 3600.0) -> CcxRu
     with open(logfile, "w") as fh:
         proc = subprocess.Popen([exe, "-i", job.stem], cwd=job.parent, stdout=fh, stderr=subprocess.STDOUT, env=env)
         peak_kb = 0
-        while True:
-            pid, status, ru = os.wait4(proc.pid, os.WNOHANG)
-            if pid:
-                break
-            peak_kb = max(peak_kb, _hwm_kb(proc.pid))
-            if time.perf_counter() - t0 > timeout:
-                proc.kill()
-                os.wait4(proc.pid, 0)
-                proc.returncode = -9
-                raise GearfeError(f"ccx: {job.name} did not finish within {timeout:g} s")
-            time.sleep(0.05)
-    proc.returncode = os.waitstatus_to_exitcode(status)
+        next_report = PROGRESS_S
+        try:
+            while True:
+                pid, status, ru = os.wait4(proc.pid, os.WNOHANG)
+                if pid:
+                    proc.returncode = os.waitstatus_to_exitcode(status)
+                    break
+                peak_kb = max(peak_kb, _hwm_kb(proc.pid))
+                wall = time.perf_counter() - t0
+                if wall > timeout:
+                    raise GearfeError(f"ccx: {job.name} did not finish within {timeout:g} s")
+                if progress is not None and wall >= next_report:
+                    next_report += PROGRESS_S
+                    progress(wall, peak_kb / 1024.0)
+                time.sleep(0.05)
+        except BaseException:
+            _stop(proc)
+            raise
     wall = time.perf_counter() - t0
     log = logfile.read_text(errors="replace")
     tail = "\n".join(log.splitlines()[-30:])

@@ -13,6 +13,7 @@ from tca.errors import InputError
 from tca.isostatic.analysis import IsostaticOptions, phi1_grid
 from tca.isostatic.train import IsostaticTrain, PlanetPlacement
 
+from pipelines.cases.planetary import check_train_meshes
 from pipelines.cases.reader import read_gears
 from pipelines.cases.schema import Table
 
@@ -78,6 +79,7 @@ def read_train(case: Table) -> IsostaticTrain:
             planets[i - 1] = dataclasses.replace(planet, name=f"planet{i}", runout=ro, runout_phase=ph)
         e.done()
     t.done()
+    check_train_meshes(sun, planet, ring, sun.r_p + planet.r_p, gears)
     return IsostaticTrain(sun, tuple(planets), ring, constraints=cons, placements=tuple(placements),
                           sun_center=centres["sun"], carrier_center=centres["carrier"], ring_center=centres["ring"])
 

@@ -49,8 +49,14 @@ def _kinds(*ks: CaseKind) -> Mapping[str, CaseKind]:
 _TCA = "pipelines.cases.validate"
 _RATE = "pipelines.cases.rate"  # gearfe rate: ISO 6336 of the case's [rating]
 KINDS: Mapping[str, CaseKind] = _kinds(
-    CaseKind("pair", "a gear pair: gears, driver and driven, centre distance, misalignment, TCA resolution",
-             {"tca": f"{_TCA}:read_pair_tca", "rate": f"{_RATE}:read_pair_rate"}, analysis="pipelines.analyses.pair"),
+    # one file per pair: a pair file loads the pair for the stress commands (with a torque key), and a stress
+    # file of model "pair" gives gearfe tca its pair (its load, position, mesh and FE keys checked, unused)
+    CaseKind("pair", "a gear pair: gears, driver and driven, centre distance, misalignment, TCA resolution; with a "
+             "torque (and optional position, [mesh], [fe], [ltca]) also a stress case",
+             {"tca": f"{_TCA}:read_pair_tca", "rate": f"{_RATE}:read_pair_rate",
+              "stress": "pipelines.cases.stress:read_stress_case", "run": "pipelines.cases.stress:read_stress_case",
+              "compare": "pipelines.cases.stress:read_stress_case", "ltca": "pipelines.cases.ltca:read_ltca_case"},
+             analysis="pipelines.analyses.pair"),
     CaseKind("planetary", "the double-helical planetary train of Part 1: gears, planets, errors of installment",
              {"tca": f"{_TCA}:read_planetary_tca", "rate": f"{_RATE}:read_planetary_rate",
               "ltca": "pipelines.cases.trains:read_planetary_ltca"}, analysis="pipelines.analyses.planetary",
@@ -64,7 +70,7 @@ KINDS: Mapping[str, CaseKind] = _kinds(
     CaseKind("stress", "a gear pair or Part 1's twin drive at a TCA position under load: mesh rules, FE settings",
              {"stress": "pipelines.cases.stress:read_stress_case", "run": "pipelines.cases.stress:read_stress_case",
               "compare": "pipelines.cases.stress:read_stress_case", "ltca": "pipelines.cases.ltca:read_ltca_case",
-              "rate": f"{_RATE}:read_stress_rate"}),
+              "rate": f"{_RATE}:read_stress_rate", "tca": f"{_TCA}:read_stress_tca"}, analysis="pipelines.analyses.pair"),
     CaseKind("mesh", "the hexahedral model of a gear pair at a TCA position, or of one gear",
              {"mesh": "pipelines.cases.mesh:read_mesh_table"}, kind_optional=True),
 )

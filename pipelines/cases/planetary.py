@@ -9,11 +9,13 @@ from tca.planetary.train import DoubleHelicalTrain, ShaftErrors
 
 from tca.units import ARCSEC
 
-from pipelines.cases.reader import ARCMIN, read_gears
+from tca.pair.gear_pair import GearPair
+
+from pipelines.cases.reader import ARCMIN, check_mesh, read_gears
 from pipelines.models.stress.case import REGULATION
 from pipelines.cases.schema import Table
 
-__all__ = ["read_train", "read_installment", "RegulationSettings", "read_regulation_options"]
+__all__ = ["read_train", "check_train_meshes", "read_installment", "RegulationSettings", "read_regulation_options"]
 
 
 @dataclass(frozen=True)
@@ -63,7 +65,16 @@ def read_train(case: Table) -> DoubleHelicalTrain:
                              "analysed by pair cases and by isostatic cases, kind = 'isostatic')")
     n = case.get("planets", int, lo=1, hi=20)
     gap = case.get("member_gap_mm", float, lo=0.0, hi=1000.0)
-    return DoubleHelicalTrain(gears["sun"], gears["planet"], gears["ring"], n, gap)
+    train = DoubleHelicalTrain(gears["sun"], gears["planet"], gears["ring"], n, gap)
+    check_train_meshes(train.sun, train.planet, train.ring, train.center_distance, gears)
+    return train
+
+
+def check_train_meshes(sun, planet, ring, center_distance: float, gears: dict) -> None:
+    """The pair checks (:func:`pipelines.cases.reader.check_mesh`) of a train's sun-planet and planet-ring meshes
+    at the carrier's centre distance, before any work."""
+    check_mesh(GearPair(sun, planet, center_distance=center_distance), gears, where="the sun-planet mesh")
+    check_mesh(GearPair(planet, ring, center_distance=center_distance), gears, where="the planet-ring mesh")
 
 
 def _floats(t: Table, key: str, n: int, lo: float, hi: float) -> list[float]:

@@ -16,7 +16,8 @@ from pipelines.cases.planetary import read_installment, read_regulation_options,
 from pipelines.cases.rating import MeshRating, check_rating, rated_meshes, read_rating, train_meshes, train_names
 from pipelines.cases.reader import read_gears, read_pair, read_tca_options
 from pipelines.cases.schema import Table
-from pipelines.cases.stress import read_stress_case
+from pipelines.cases.ltca import loaded, read_loaded_pair
+from pipelines.cases.stress import TORQUE_KEYS, read_stress_case
 
 __all__ = ["RateJob", "read_pair_rate", "read_planetary_rate", "read_stress_rate"]
 
@@ -37,13 +38,20 @@ def _need(t: Table) -> None:
 
 
 def read_pair_rate(t: Table) -> RateJob:
-    """``gearfe rate`` of a ``kind = "pair"`` case: the pair and its ``[rating]`` (with a torque of its own)."""
+    """``gearfe rate`` of a ``kind = "pair"`` case: the pair and its ``[rating]`` (with a torque of its own); a pair
+    file with a torque key is rated at that torque, as its stress case (one file per pair)."""
     _need(t)
-    t.get("kind", str)
-    title = t.get("title", str, "")
-    pair, _, _ = read_pair(t, read_gears(t))
-    read_tca_options(t.table("tca", required=False))
-    spec = read_rating(t.table("rating"), (pair.gear1.name, pair.gear2.name), case_has_torque=False)
+    if any(t.has(k) for k in TORQUE_KEYS):
+        return read_stress_rate(t)
+    title = t.data.get("title", "")
+    if loaded(t):  # position, [mesh], [fe], [ltca] checked, not used
+        pair, _, spec = read_loaded_pair(t)
+    else:
+        t.get("kind", str)
+        t.get("title", str, "")
+        pair, _, _ = read_pair(t, read_gears(t))
+        read_tca_options(t.table("tca", required=False))
+        spec = read_rating(t.table("rating"), (pair.gear1.name, pair.gear2.name), case_has_torque=False)
     t.done()
     meshes = [MeshRating("pair", pair, rating_case(pair, spec.gears, spec.service, spec.load()))]
     check_rating(meshes)

@@ -52,18 +52,24 @@ from tca.errors import GearfeError, InputError
 from tca.geometry.modifications.end_relief import END_RELIEF_ENDS, EndRelief
 from tca.geometry.gear import Gear
 from tca.geometry.modifications.tip_relief import TipRelief
+from tca.pair.checks import PairGeometry, check_pair
 from tca.pair.gear_pair import GearPair, Misalignment
 from tca.pair.analysis import TCAOptions
 from tca.units import ARCMIN
 
 from pipelines.cases.schema import Table
 
-__all__ = ["load_case", "parse_case_text", "MAX_CASE_BYTES", "read_gear", "read_gears", "read_pair", "read_misalignment", "read_tca_options", "CASES_DIR"]
+__all__ = ["load_case", "parse_case_text", "MAX_CASE_BYTES", "read_gear", "read_gears", "read_pair", "read_misalignment",
+           "read_tca_options", "check_mesh", "CASES_DIR", "MODULE_MM", "PRESSURE_ANGLE_DEG", "HELIX_MIN_DEG", "HELIX_MAX_DEG",
+           "FACE_WIDTH_MODULES", "TIP_RELIEF_MODULES", "CROWNING_THICKNESS"]
 
 CASES_DIR = Path(__file__).parent  # the shipped case files sit beside this module
 
 
-MAX_CASE_BYTES = 1 << 20  # a case file is a few kB; anything above 1 MiB is not a case file
+MAX_CASE_BYTES = 1 << 20
+TIP_RELIEF_MODULES = 0.1  # largest tip relief C_a in normal modules (and a quarter of the top land)
+CROWNING_PLUNGE = 0.5  # largest 2 a_pl r_D of a lead crowning given as c_beta_um (tca.geometry.modifications.crowning)
+CROWNING_THICKNESS = 0.25  # largest lead crowning C_beta: a quarter of the normal tooth thickness s_n  # a case file is a few kB; anything above 1 MiB is not a case file
 
 
 def load_case(path: str | Path) -> Table:
@@ -99,42 +105,121 @@ def parse_case_text(raw: bytes, name: str = "CASE") -> dict:
         raise InputError("CASE", name, "a UTF-8 text file",
                          f"byte 0x{raw[e.start]:02x} on line {line} is not UTF-8: save the file as UTF-8") from None
     try:
-        return tomllib.loads(text)
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
         raise InputError("CASE", name, "a TOML file", f"TOML syntax: {e}") from None
+    except RecursionError:  # arrays or inline tables nested thousands deep
+        raise InputError("CASE", name, f"a TOML file nested at most {MAX_CASE_DEPTH} levels deep",
+                         "nested too deep to parse") from None
+    depth = _depth(data)
+    if depth > MAX_CASE_DEPTH:
+        raise InputError("CASE", name, f"a TOML file nested at most {MAX_CASE_DEPTH} levels deep (tables, arrays)",
+                         f"at least {depth} levels")
+    return data
+
+
+MAX_CASE_DEPTH = 16  # tables and arrays inside one another: a case file has 4 ([gears.sun.tip_relief] = 3)
+
+
+def _depth(data) -> int:
+    """Nesting depth of parsed TOML (dicts and lists), without recursion."""
+    deepest, stack = 0, [(data, 1)]
+    while stack:
+        v, d = stack.pop()
+        deepest = max(deepest, d)
+        if deepest > MAX_CASE_DEPTH:
+            return deepest
+        kids = v.values() if isinstance(v, dict) else v
+        stack.extend((k, d + 1) for k in kids if isinstance(k, (dict, list)))
+    return deepest
+
+
+# plausibility ranges, checked before any geometry (a value outside is most likely in another unit)
+MODULE_MM = (0.1, 100.0)  # normal module: instrument gears to mill gearing
+PRESSURE_ANGLE_DEG = (10.0, 35.0)  # normal pressure angle of the rack
+HELIX_MIN_DEG = 1.0  # a helix angle is 0 (spur) or at least this
+HELIX_MAX_DEG = 45.0  # helix angles below this (open); see docs/cases.md for the accepted maximum
+FACE_WIDTH_MODULES = (1.0, 300.0)  # face width in normal modules
+
+
+def _unit_hint(value: float, lo: float, hi: float, scale: float, unit: str, shown: str) -> str:
+    """'looks like <unit>: <value * scale> <shown>?' when the value scaled falls in [lo, hi], else ''."""
+    v = value * scale
+    return f"{value:g} looks like {unit}: {v:.6g} {shown}?" if lo <= v <= hi else ""
+
+
+def _plausible(t: Table, key: str, value: float, lo: float, hi: float, valid: str, hints=()) -> None:
+    """InputError naming ``key`` when value is outside [lo, hi], with the first unit hint that fits."""
+    if lo <= value <= hi:
+        return
+    why = next((h for h in hints if h), "")
+    raise InputError(t._key(key), value, valid, why)
+
+
+def _read_angle(t: Table, key: str, default: float, lo: float, hi: float, *, zero: bool = False) -> float | None:
+    """An angle [deg] in [lo, hi] (or 0 when ``zero``), refused with a radians hint otherwise."""
+    v = t.get(key, float, default, lo=0.0, hi=90.0, hi_open=True)
+    if v is None or (zero and v == 0.0):
+        return v
+    rad = _unit_hint(v, lo, hi, 180.0 / math.pi, "radians", "deg")
+    valid = (f"0 (spur) or an angle in [{lo:g}, {hi:g}) deg" if zero else f"an angle in [{lo:g}, {hi:g}] deg")
+    if v >= hi and zero:
+        raise InputError(t._key(key), v, valid)
+    _plausible(t, key, v, lo, hi, valid, (rad,))
+    return v
 
 
 def read_gear(t: Table, name: str) -> Gear:
-    """A :class:`tca.geometry.gear.Gear` from its case table (see the module docstring for keys)."""
+    """A :class:`tca.geometry.gear.Gear` from its case table (see the module docstring for keys).
+
+    Order: every key's type and range, the plausibility of module, angles and face width (with a unit
+    hint), unknown keys, then the geometry (undercut, pointed teeth, modifications)."""
     hand = t.get("hand", str, "right", choices=("right", "left"))
+    teeth = t.get("teeth", int, lo=3, hi=2000)
+    module = t.get("module_mm", float, lo=0.0, lo_open=True, hi=1000.0)
+    _plausible(t, "module_mm", module, *MODULE_MM, f"a normal module in [{MODULE_MM[0]:g}, {MODULE_MM[1]:g}] mm",
+               (_unit_hint(module, *MODULE_MM, 1e3, "metres", "mm"),))
+    alpha = _read_angle(t, "pressure_angle_deg", 20.0, *PRESSURE_ANGLE_DEG)
+    helix = _read_angle(t, "helix_deg", 0.0, HELIX_MIN_DEG, HELIX_MAX_DEG, zero=True)
+    ref = _read_angle(t, "reference_helix_deg", None, HELIX_MIN_DEG, HELIX_MAX_DEG, zero=True)
+    face = t.get("face_width_mm", float, lo=0.0, lo_open=True, hi=1e5)
+    lo_b, hi_b = FACE_WIDTH_MODULES[0] * module, min(FACE_WIDTH_MODULES[1] * module, 2000.0)
+    _plausible(t, "face_width_mm", face, lo_b, hi_b,
+               f"a face width in [{lo_b:g}, {hi_b:g}] mm ({FACE_WIDTH_MODULES[0]:g} to {FACE_WIDTH_MODULES[1]:g} normal "
+               f"modules, at most 2000 mm)", (_unit_hint(face, lo_b, hi_b, 1e3, "metres", "mm"),))
     plunge = None
     p = t.table("plunge", required=False)
     if p is not None:
-        plunge = DiskPlunge(p.get("disk_radius_mm", float, lo=0.0, lo_open=True),
+        plunge = DiskPlunge(p.get("disk_radius_mm", float, lo=0.0, lo_open=True, hi=1e5),
                             p.get("parabola_per_mm", float, lo=0.0, hi=0.1, hi_open=True))
         p.done()
     ct = t.table("crowning", required=False)
     if ct is not None:
         if plunge is not None:
             raise InputError(f"{t.path}.crowning", ct.data, "either [plunge] or [crowning], not both (the same disk plunging)")
-        half = 0.5 * t.get("face_width_mm", float, lo=0.0, lo_open=True, hi=2000.0)
-        c_beta = ct.get("c_beta_um", float, lo=0.0, lo_open=True, hi=2000.0) * 1e-3
-        plunge = DiskPlunge(ct.get("disk_radius_mm", float, 100.0, lo=0.0, lo_open=True), c_beta / half**2)
+        s_n = module * (0.5 * math.pi + 2 * t.data.get("profile_shift", 0.0) * math.tan(math.radians(alpha))) \
+            if isinstance(t.data.get("profile_shift", 0.0), (int, float)) else module * 0.5 * math.pi
+        r_d = ct.get("disk_radius_mm", float, 100.0, lo=0.0, lo_open=True, hi=1e5)
+        # [um] a quarter of the normal tooth thickness, and a plunge path at most half as curved as the disk
+        # (2 a_pl r_D <= CROWNING_PLUNGE: the crowned surface's Chebyshev fit converges; the disk's own limit is 1)
+        c_max = round(min(CROWNING_THICKNESS * s_n, CROWNING_PLUNGE * (0.5 * face) ** 2 / (2 * r_d)) * 1e3, 1)
+        c_beta = ct.get("c_beta_um", float, lo=0.0, lo_open=True, hi=c_max) * 1e-3
+        plunge = DiskPlunge(r_d, c_beta / (0.5 * face) ** 2)
         ct.done()
     relief = None
     rt = t.table("tip_relief", required=False)
     if rt is not None:
-        amount = rt.get("amount_um", float, lo=0.0, lo_open=True, hi=1000.0) * 1e-3
+        amount = rt.get("amount_um", float, lo=0.0, lo_open=True, hi=TIP_RELIEF_MODULES * module * 1e3) * 1e-3
         if rt.has("start_diameter_mm") == rt.has("start_roll_mm"):
             raise InputError(f"{rt.path}.start_diameter_mm", rt.data.get("start_diameter_mm"),
                              "exactly one of start_diameter_mm and start_roll_mm")
         power = 1 if rt.get("kind", str, "linear", choices=("linear", "parabolic")) == "linear" else 2
         if rt.has("start_diameter_mm"):
-            start = 0.5 * rt.get("start_diameter_mm", float, lo=0.0, lo_open=True)
+            start_key, start = "start_diameter_mm", rt.get("start_diameter_mm", float, lo=0.0, lo_open=True, hi=1e5)
         else:
-            start = -rt.get("start_roll_mm", float, lo=0.0)  # a roll length, converted below with the base radius
+            start_key, start = "start_roll_mm", rt.get("start_roll_mm", float, lo=0.0, hi=1e5)
         rt.done()
-        relief = (amount, start, power)
+        relief = (amount, start_key, start, power)
     end = None
     et = t.table("end_relief", required=False)
     if et is not None:
@@ -143,42 +228,44 @@ def read_gear(t: Table, name: str) -> Gear:
                         1 if et.get("shape", str, "linear", choices=("linear", "parabolic")) == "linear" else 2,
                         et.get("ends", str, "both", choices=END_RELIEF_ENDS))
         et.done()
-    ref = t.get("reference_helix_deg", float, None, lo=0.0, hi=45.0, hi_open=True)
+    fields = dict(
+        internal=t.get("internal", bool, False),
+        profile_shift=t.get("profile_shift", float, 0.0, lo=-1.5, hi=1.5),
+        addendum=t.get("addendum", float, 1.0, lo=0.0, lo_open=True, hi=2.0),
+        tool_addendum=t.get("tool_addendum", float, 1.25, lo=0.0, lo_open=True, hi=3.0),
+        tool_tip_radius=t.get("tool_tip_radius", float, 0.25, lo=0.0, lo_open=True, hi=1.0, hi_open=True),
+        parabola_pos=t.get("parabola_drive_per_mm", float, 0.0, lo=0.0, hi=0.5, hi_open=True),
+        parabola_neg=t.get("parabola_coast_per_mm", float, 0.0, lo=0.0, hi=0.5, hi_open=True),
+        parabola_apex=t.get("parabola_apex_mm", float, 0.0, lo=-50.0, hi=50.0),
+        runout=t.get("runout_um", float, 0.0, lo=0.0, hi=1000.0) * 1e-3,
+        runout_phase=math.radians(t.get("runout_phase_deg", float, 0.0, lo=-3600.0, hi=3600.0)),
+    )
+    t.done()  # a misspelt key is named before any geometry is built from the defaults it left in place
     try:
-        g = Gear(
-            name=name,
-            teeth=t.get("teeth", int, lo=3, hi=2000),
-            module=t.get("module_mm", float, lo=0.0, lo_open=True, hi=100.0),
-            pressure_angle=math.radians(t.get("pressure_angle_deg", float, 20.0, lo=0.0, lo_open=True, hi=45.0, hi_open=True)),
-            face_width=t.get("face_width_mm", float, lo=0.0, lo_open=True, hi=2000.0),
-            helix=math.radians(t.get("helix_deg", float, 0.0, lo=0.0, hi=45.0, hi_open=True)),
-            hand=1 if hand == "right" else -1,
-            reference_helix=None if ref is None else math.radians(ref),
-            internal=t.get("internal", bool, False),
-            profile_shift=t.get("profile_shift", float, 0.0, lo=-1.5, hi=1.5),
-            addendum=t.get("addendum", float, 1.0, lo=0.0, lo_open=True, hi=2.0),
-            tool_addendum=t.get("tool_addendum", float, 1.25, lo=0.0, lo_open=True, hi=3.0),
-            tool_tip_radius=t.get("tool_tip_radius", float, 0.25, lo=0.0, lo_open=True, hi=1.0, hi_open=True),
-            parabola_pos=t.get("parabola_drive_per_mm", float, 0.0, lo=0.0, hi=0.5, hi_open=True),
-            parabola_neg=t.get("parabola_coast_per_mm", float, 0.0, lo=0.0, hi=0.5, hi_open=True),
-            parabola_apex=t.get("parabola_apex_mm", float, 0.0, lo=-50.0, hi=50.0),
-            plunge=plunge,
-            runout=t.get("runout_um", float, 0.0, lo=0.0, hi=1000.0) * 1e-3,
-            runout_phase=math.radians(t.get("runout_phase_deg", float, 0.0)),
-            end_relief=end,
-        )
+        g = Gear(name=name, teeth=teeth, module=module, pressure_angle=math.radians(alpha), face_width=face,
+                 helix=math.radians(helix), hand=1 if hand == "right" else -1,
+                 reference_helix=None if ref is None else math.radians(ref), plunge=plunge, end_relief=end, **fields)
         if relief is not None:
-            amount, start, power = relief
-            r_s = start if start > 0 else math.hypot(start, g.r_b)
+            amount, start_key, start, power = relief
+            top = g.top_land
+            if amount > 0.25 * top:
+                raise InputError("tip_relief.amount_um", amount * 1e3,
+                                 f"<= {250 * top:.1f} um, a quarter of the top land {top:.4f} mm of {name} "
+                                 f"(<= {TIP_RELIEF_MODULES * module * 1e3:g} um = {TIP_RELIEF_MODULES:g} m_n in any case)")
+            r_s = 0.5 * start if start_key == "start_diameter_mm" else math.hypot(start, g.r_b)
             g = replace(g, tip_relief=TipRelief(amount, r_s, power))
             g.rack  # the start circle is checked against the working flank here
     except InputError as e:  # name the key as it appears in the case file
-        field = e.field if e.field.startswith(t.path) else f"{t.path}.{e.field.split('.', 1)[-1]}"
-        if relief is not None and "tip_relief" in e.field and relief[1] < 0:
-            field, e = f"{t.path}.tip_relief.start_roll_mm", InputError("", -relief[1], "a roll length whose circle lies "
-                                                                         "between the start of the fillet and the tip: " + e.valid)
-        raise InputError(field, e.value, e.valid) from None
-    t.done()
+        tail = e.field.split(".")
+        while tail and tail[0] == name:
+            tail = tail[1:]
+        field = f"{t.path}.{'.'.join(tail)}" if tail else t.path
+        valid = e.valid
+        if relief is not None and "tip_relief.start_diameter_mm" in e.field and relief[1] == "start_roll_mm":
+            field = f"{t.path}.tip_relief.start_roll_mm"
+            valid = "a roll length whose circle lies between the start of the fillet and the tip: " + e.valid
+            raise InputError(field, relief[2], valid) from None
+        raise InputError(field, e.value, valid, e.why) from None
     return g
 
 
@@ -220,16 +307,38 @@ def read_tca_options(t: Table | None) -> TCAOptions:
     return o
 
 
+def _case_field(field: str, gears: dict, prefix: str = "gears") -> str:
+    """A tca field (``<gear>.<key>`` or a pair key) as the case file names it (``gears.<gear>.<key>``)."""
+    head = field.split(".", 1)[0]
+    return f"{prefix}.{field}" if head in gears else field
+
+
+def check_mesh(pair: GearPair, gears: dict, prefix: str = "gears", where: str = "") -> PairGeometry:
+    """The checks of :mod:`tca.pair.checks` on a pair of a case (before any work), keys named as in the file;
+    ``where`` names the mesh of a train in the error."""
+    try:
+        return check_pair(pair)
+    except InputError as e:
+        why = "; ".join(filter(None, (e.why, where)))
+        raise InputError(_case_field(e.field, gears, prefix), e.value, e.valid, why) from None
+
+
 def read_pair(case: Table, gears: dict[str, Gear]) -> tuple[GearPair, str, str]:
-    """The pair named by ``driver``/``driven`` with its ``[misalignment]`` and ``center_distance_mm``."""
+    """The pair named by ``driver``/``driven`` with its ``[misalignment]`` and ``center_distance_mm``, checked
+    (:func:`check_mesh`): without ``center_distance_mm`` it runs at the zero-backlash centre distance of its
+    profile shifts."""
     names = tuple(gears)
     driver = case.get("driver", str, choices=names)
     driven = case.get("driven", str, choices=names)
     if driver == driven:
         raise InputError("driven", driven, f"a gear other than the driver {driver!r}")
-    cd = case.get("center_distance_mm", float, None, lo=0.0, lo_open=True)
-    pair = GearPair(gears[driver], gears[driven], read_misalignment(case.table("misalignment", required=False)),
-                    center_distance=cd)
+    cd = case.get("center_distance_mm", float, None, lo=0.0, lo_open=True, hi=1e5)
+    mis = read_misalignment(case.table("misalignment", required=False))
+    try:
+        pair = GearPair(gears[driver], gears[driven], mis, center_distance=cd)
+    except InputError as e:
+        raise InputError(_case_field(e.field.replace("gear2.", f"{driven}."), gears), e.value, e.valid, e.why) from None
+    check_mesh(pair, gears)
     return pair, driver, driven
 
 

@@ -1,5 +1,20 @@
-"""Reader of a stress load case (``kind = "stress"``): every key checked, into the record
-:class:`pipelines.models.stress.case.StressCase` (case-file keys in :mod:`pipelines.models.stress.run`)."""
+r"""Reader of a stress load case (``kind = "stress"``, or a pair file ``kind = "pair"``): every key checked, into
+the record :class:`pipelines.models.stress.case.StressCase` (case-file keys in :mod:`pipelines.models.stress.run`).
+
+One file per pair: a ``kind = "pair"`` file is read here as a stress case of ``model = "pair"`` (``model`` is
+optional there), and ``gearfe tca`` reads a ``kind = "stress"`` pair file for its TCA (the load, position,
+mesh and FE keys are checked and left unused). The load names its gear, exactly one of:
+
+- ``driven_torque_nm`` (or ``torque_nm``, the same: the driven gear's, or the ring's in a twin case),
+- ``driver_torque_nm`` (pair model): converted with the tooth ratio,
+  :math:`T_	ext{driven} = T_	ext{driver}\,z_	ext{driven}/z_	ext{driver}` (S1, no losses).
+
+Before any sizing or meshing the nominal unit load of the pair, :math:`w = F_t/(b\,m_n)` with
+:math:`F_t = T_	ext{driven}/r_	ext{driven}` at the driven gear's pitch radius and :math:`b` the narrower face
+(S2), must stay below :data:`UNIT_LOAD_MAX_MPA` (the nominal tooth-root stress :math:`\sigma_{F0}` is about
+4-5 times w: 1500 MPa is some 7000 MPa in the root, beyond any steel); a torque above it is named, with the
+value in N m it would have been if it was typed in N mm.
+"""
 
 from __future__ import annotations
 
@@ -7,19 +22,74 @@ import math
 
 from fem.material import Material
 from tca.errors import InputError
+from tca.pair.checks import check_pair
 from tca.pair.te import POSITIONS
 from tca.planetary.train import ShaftErrors
 
 from pipelines.cases.reader import ARCMIN, read_gears, read_pair, read_tca_options
 from pipelines.cases.schema import Table
 from pipelines.cases.planetary import read_regulation_options, read_train
-from pipelines.cases.rating import with_rating
+from pipelines.cases.rating import read_rating, with_rating
 from pipelines.models.stress.case import MODELS, StressCase
 from pipelines.models.stress.model import FESettings
 from pipelines.models.stress.scene import PHASES
 from pipelines.models.stress.sizing import SIZING, SizeRules
 
-__all__ = ["read_stress_case"]
+__all__ = ["read_stress_case", "read_unloaded_pair", "read_torque", "torque_record", "check_unit_load", "UNIT_LOAD_MAX_MPA", "TORQUE_KEYS"]
+
+UNIT_LOAD_MAX_MPA = 1500.0  # largest nominal unit load F_t / (b m_n) of a stress case (S2)
+TORQUE_KEYS = ("driven_torque_nm", "torque_nm", "driver_torque_nm")
+TORQUE_MAX_NM = 1e7
+
+
+def read_torque(case: Table, required: bool = True) -> tuple[str, float] | None:
+    """(key, value [N m]) of the one torque key of a case (``driven_torque_nm``, ``torque_nm`` or
+    ``driver_torque_nm``); None when absent and not required. InputError when two are given."""
+    given = [k for k in TORQUE_KEYS if case.has(k)]
+    if len(given) > 1:
+        raise InputError(given[1], case.data[given[1]], f"exactly one of {', '.join(TORQUE_KEYS)} (not both {given[0]} "
+                         f"and {given[1]}; torque_nm is the driven gear's)")
+    if not given:
+        if not required:
+            return None
+        raise InputError("driven_torque_nm", None, f"a torque in (0, {TORQUE_MAX_NM:g}] N m: one of "
+                         f"{', '.join(TORQUE_KEYS)} (torque_nm is the driven gear's)", "missing: this command loads the pair")
+    k = given[0]
+    return k, case.get(k, float, lo=0.0, lo_open=True, hi=TORQUE_MAX_NM)
+
+
+def torque_record(case: StressCase) -> dict:
+    """The torques of a stress case with the gears they belong to, for every summary: the driven gear's (the ring's
+    in a twin case) and, for a pair, the driver's (S1), with the pair checks' findings (``pair_geometry``: the centre
+    distance and where it comes from, backlash, clearances, contact ratios, :func:`tca.pair.checks.check_pair`)."""
+    if case.model != "pair":
+        return {"torque_gear": case.train.ring.name, "driven_torque_nm": case.torque * 1e-3}
+    g1, g2 = case.pair.gear1, case.pair.gear2
+    return {"torque_gear": g2.name, "driven_torque_nm": case.torque * 1e-3,
+            "driver_gear": g1.name, "driver_torque_nm": case.torque * 1e-3 * g1.teeth / g2.teeth,
+            "pair_geometry": check_pair(case.pair).summary()}  # remembered from the reader's check
+
+
+def _driven_torque(key: str, value: float, pair) -> float:
+    """The driven gear's torque [N mm] from the torque key (S1), its unit load checked (S2)."""
+    g1, g2 = pair.gear1, pair.gear2
+    T = value * 1e3 * (g2.teeth / g1.teeth if key == "driver_torque_nm" else 1.0)
+    check_unit_load(key, value, value, T, pair)
+    return T
+
+
+def check_unit_load(key: str, shown, value: float, T: float, pair) -> None:
+    """InputError naming ``key`` (``shown`` as written) when the driven torque T [N mm] (``value`` [N m] as given, on
+    the driver for ``driver_torque_nm``) exceeds the unit load (S2)."""
+    g1, g2 = pair.gear1, pair.gear2
+    r2 = 0.5 * g2.teeth * g2.module / math.cos(g2.beta_ref)
+    w = T / r2 / (min(g1.face_width, g2.face_width) * g2.module)
+    if w > UNIT_LOAD_MAX_MPA:
+        hint = f"{value:g} looks like N mm: {value * 1e-3:g} N m?" if w * 1e-3 <= UNIT_LOAD_MAX_MPA else "no steel carries it"
+        raise InputError(key, shown, f"a torque whose nominal unit load F_t/(b m_n) <= {UNIT_LOAD_MAX_MPA:g} MPa: "
+                         f"<= {value * UNIT_LOAD_MAX_MPA / w:.4g} N m on {g1.name if key == 'driver_torque_nm' else g2.name}",
+                         f"F_t/(b m_n) = {w:.4g} MPa; {hint}")
+
 
 def _um(v: float | None) -> float | None:
     return None if v is None else v * 1e-3
@@ -97,13 +167,33 @@ def _read_position(case: Table):
     return pos, phi1, roll
 
 
-def read_stress_case(case: Table) -> StressCase:
-    """A :class:`StressCase` from a case table (module docstring); every key is checked, unknown keys rejected."""
-    kind = case.get("kind", str, "stress", choices=("stress",))
-    del kind
-    model = case.get("model", str, choices=MODELS)
+def read_unloaded_pair(case: Table):
+    """(pair, TCA options, rating spec or None) of a pair file without a torque (gearfe tca, gearfe rate): its
+    position, ``[mesh]`` and ``[fe]`` keys are checked as :func:`read_stress_case` checks them, and not used;
+    ``[rating]`` then gives the torque it rates (docs/cases.md)."""
+    kind = case.get("kind", str, "stress", choices=("stress", "pair"))
+    if kind == "stress" or case.has("model"):
+        case.get("model", str, "pair", choices=("pair",))
+    case.get("title", str, "")
+    _read_position(case)
+    tca = read_tca_options(case.table("tca", required=False))
+    _read_mesh(case.table("mesh", required=False))
+    _read_fe(case.table("fe", required=False))
+    pair, _, _ = read_pair(case, read_gears(case))
+    spec = read_rating(case.table("rating", required=False), (pair.gear1.name, pair.gear2.name), case_has_torque=False)
+    return pair, tca, spec
+
+
+def read_stress_case(case: Table, ltca: bool = True) -> StressCase:
+    """A :class:`StressCase` from a case table (module docstring); every key is checked, unknown keys rejected.
+    ``ltca``: an ``[ltca]`` table (one file per pair) is checked too, and left unused (gearfe ltca reads it itself)."""
+    kind = case.get("kind", str, "stress", choices=("stress", "pair"))
+    model = case.get("model", str, "pair", choices=("pair",)) if kind == "pair" else case.get("model", str, choices=MODELS)
     title = case.get("title", str, "")
-    torque = case.get("torque_nm", float, lo=0.0, lo_open=True, hi=1e7) * 1e3
+    tkey, tval = read_torque(case)
+    if model == "twin" and tkey == "driver_torque_nm":
+        raise InputError(tkey, tval, "torque_nm or driven_torque_nm in a twin case (the ring's torque)")
+    torque = tval * 1e3
     pos, phi1, roll = _read_position(case)
     tca = read_tca_options(case.table("tca", required=False))
     mesh = _read_mesh(case.table("mesh", required=False))
@@ -113,6 +203,7 @@ def read_stress_case(case: Table) -> StressCase:
             if case.has(k):
                 raise InputError(k, case.data[k], "no planetary-train keys in a 'pair' case")
         pair, _, _ = read_pair(case, read_gears(case))
+        torque = _driven_torque(tkey, tval, pair)
         for g in (pair.gear1, pair.gear2):
             if g.runout > 0:  # the FE scene places a periodic pair (tca.planetary.subgear.MeshTE): refuse, not ignore
                 raise InputError(f"gears.{g.name}.runout_um", g.runout * 1e3, "0 in a stress case (run-out is analysed "
@@ -136,5 +227,9 @@ def read_stress_case(case: Table) -> StressCase:
                          regulation_tol=ro.tol, regulation_maxiter=ro.max_iterations, member_phase=ro.member_phase, position=pos, phi1=phi1, roll=roll, tca=tca,
                          mesh=mesh, fe=fe)
     out = with_rating(case, out)  # [rating]: ISO 6336 (pipelines.cases.rating)
+    if ltca and case.has("ltca"):
+        from pipelines.cases.ltca import read_ltca_options  # that module reads on top of this one
+
+        read_ltca_options(case.table("ltca"), out.torque)
     case.done()
     return out

@@ -11,7 +11,7 @@ from __future__ import annotations
 from pipelines.cases.rating import read_rating, train_names
 from pipelines.cases.schema import Table
 
-__all__ = ["read_pair_tca", "read_planetary_tca", "read_isostatic_tca", "read_face_tca", "validate_case"]
+__all__ = ["read_pair_tca", "read_stress_tca", "read_planetary_tca", "read_isostatic_tca", "read_face_tca", "validate_case"]
 
 
 def _header(t: Table) -> None:
@@ -21,12 +21,24 @@ def _header(t: Table) -> None:
 
 def read_pair_tca(t: Table) -> None:
     """Every key of a ``kind = "pair"`` case (consumes ``t``)."""
+    from pipelines.cases.ltca import loaded
     from pipelines.cases.reader import read_gears, read_pair, read_tca_options
 
+    if loaded(t):  # a pair file with a load: every key as the stress commands read them
+        return read_stress_tca(t)
     _header(t)
     pair, _, _ = read_pair(t, read_gears(t))
     read_tca_options(t.table("tca", required=False))
     read_rating(t.table("rating", required=False), (pair.gear1.name, pair.gear2.name), case_has_torque=False)  # ISO 6336
+    t.done()
+
+
+def read_stress_tca(t: Table) -> None:
+    """Every key of a ``kind = "stress"`` case for gearfe tca (consumes ``t``): a pair model (the twin drive's TCA is
+    a ``kind = "planetary"`` case); the load, position, mesh and FE keys are checked and not used."""
+    from pipelines.cases.ltca import read_loaded_pair
+
+    read_loaded_pair(t)
     t.done()
 
 

@@ -9,6 +9,8 @@ The error contract (docs/errors.md):
 * SIGINT (Ctrl-C) and SIGTERM (``timeout``, batch schedulers) stop the run with one line and exit
   status 130 / 143 (:mod:`pipelines.cli.interrupt`: at the next progress line at the latest); staged output folders are removed on the way out (sweeps keep their finished
   points and resume);
+* a run whose own accuracy check misses a target (``gearfe ltca`` with ``check_positions``) writes its
+  results and exits 3 with one line naming the missed target;
 * an unexpected exception (a bug) is one line naming its type and exit status 70; set
   ``GEARFE_TRACEBACK=1`` to see the traceback.
 """
@@ -25,9 +27,11 @@ from pipelines.errors import USER_ERRORS
 from pipelines.cli.interrupt import Terminated, check_interrupted, install, restore
 from pipelines.render import offscreen
 
-__all__ = ["main", "SUBCOMMANDS", "Terminated", "check_interrupted", "EXIT_INPUT", "EXIT_BUG", "EXIT_SIGINT", "EXIT_SIGTERM"]
+__all__ = ["main", "SUBCOMMANDS", "Terminated", "check_interrupted", "EXIT_INPUT", "EXIT_CHECK", "EXIT_BUG", "EXIT_SIGINT",
+           "EXIT_SIGTERM"]
 
 EXIT_INPUT = 2  # bad input, impossible geometry, a failed solve, a model too large
+EXIT_CHECK = 3  # finished and wrote its results, but its own accuracy check missed a target (gearfe ltca)
 EXIT_BUG = 70  # an unexpected exception (EX_SOFTWARE)
 EXIT_SIGINT = 130  # 128 + SIGINT
 EXIT_SIGTERM = 143  # 128 + SIGTERM

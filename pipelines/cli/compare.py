@@ -34,6 +34,7 @@ from pathlib import Path
 
 from tca.errors import InputError
 
+from pipelines.cases.stress import torque_record
 from pipelines.cli.run import add_overrides, progress, read_with_overrides, write_summary
 from pipelines.cli.outdir import staged_output
 from pipelines.render.plots import side_by_side
@@ -181,7 +182,7 @@ def handle(args) -> int:
         for label in LABELS:
             s = add_images(runs.pop(label), tmp / label, {"von_mises": vm}, progress, top=top,
                            show_edges=getattr(args, "edges", False)).summary  # frees the meshes and fields after
-            s = {"kind": "run", "case": str(paths[label]), **s}
+            s = {"kind": "run", "case": str(paths[label]), **s, **torque_record(cases[label])}
             s["files"] = [*s["files"], "report.html"]
             write_summary(s, tmp / label / "summary.json")
             run_html(s, tmp / label, Path(paths[label]).read_text())

@@ -1,4 +1,4 @@
-"""Loaded TCA of a gear pair over a mesh cycle from condensed flank compliances (issue 18).
+"""Loaded TCA of a gear pair over a mesh cycle from condensed flank compliances.
 
 ``gearfe ltca CASE.toml --out DIR`` reads a stress case (``kind = "stress"``, ``model = "pair"``) with an
 optional ``[ltca]`` table (positions, torques, flank grid; :mod:`pipelines.cases.ltca`), builds each
@@ -6,7 +6,9 @@ gear's flank compliance once from its hexahedral model, then solves the contact 
 teeth within reach at every position and torque. Writes ``results.csv``, ``pressure.csv``,
 ``te_loaded.png``, ``load_share.png``, ``pressure.png``, ``mesh_stiffness.png`` and ``summary.json``
 (with ``check_positions`` > 0 also the check against the full contact FE). Progress on stderr.
-Nothing is written when the case is invalid or a solve fails (exit status 2).
+Nothing is written when the case is invalid, the resource plan exceeds ``GEARFE_MAX_MEMORY_GB`` or a solve
+fails (exit status 2). When the check against the full contact FE misses one of its targets, the results are
+written and the last line names the missed target (exit status 3).
 """
 
 from __future__ import annotations
@@ -17,6 +19,8 @@ import sys
 import time
 from pathlib import Path
 
+from pipelines.cases.stress import torque_record
+from pipelines.cli import EXIT_CHECK
 from pipelines.cli.interrupt import check_interrupted
 from pipelines.cli.outdir import staged_output
 from pipelines.cases.kinds import read_case
@@ -44,9 +48,13 @@ def handle(args) -> int:
     if kind.name in ("isostatic", "planetary"):
         return _handle_train(args, read, t0)
     case, opts = read
+    bar = progress_bar("gearfe ltca: positions")
     with staged_output(args.out) as tmp:
-        s = run_ltca(case, opts, Path(tmp), say=_say, bar=progress_bar("gearfe ltca: positions"))
-        s = {**s, "case": str(args.case), "rating": plain(ltca_rating(case, s, tmp)), "elapsed_s": time.perf_counter() - t0}
+        try:
+            s = run_ltca(case, opts, Path(tmp), say=_say, bar=bar)
+        finally:
+            bar.close()  # an error raised mid-run starts on a line of its own
+        s = {**s, **torque_record(case), "case": str(args.case), "rating": plain(ltca_rating(case, s, tmp)), "elapsed_s": time.perf_counter() - t0}
         s["files"] = s["files"] + ["summary.json"]
         (Path(tmp) / "summary.json").write_text(json.dumps(s, indent=2) + "\n")
     t = s["timing"]
@@ -62,6 +70,12 @@ def handle(args) -> int:
             print(f"  check vs full FE, {k}: worst {v:.4g} (target {s['fe_check']['targets'][k]}: {'met' if m[k] else 'MISSED'})")
     print_rating(s["rating"])
     print(f"results in {args.out}/")
+    missed = [k for k, ok in (s["fe_check"] or {}).get("met", {}).items() if not ok]
+    if missed:
+        w, tg = s["fe_check"]["worst"], s["fe_check"]["targets"]
+        print("gearfe ltca: check failed: " + "; ".join(f"{k} worst {w[k]:.4g} > target {tg[k]}" for k in missed)
+              + f" against the full contact FE (results written to {args.out}/)", file=sys.stderr)
+        return EXIT_CHECK
     return 0
 
 
@@ -69,8 +83,12 @@ def _handle_train(args, case, t0: float) -> int:
     """A planetary train (docs/trains.md): shares, K_gamma, loaded TE, sun centre path."""
     from pipelines.models.trains.ltca import run_train_ltca
 
+    bar = progress_bar("gearfe ltca: positions")
     with staged_output(args.out) as tmp:
-        s = run_train_ltca(case, Path(tmp), say=_say, bar=progress_bar("gearfe ltca: positions"))
+        try:
+            s = run_train_ltca(case, Path(tmp), say=_say, bar=bar)
+        finally:
+            bar.close()  # an error raised mid-run starts on a line of its own
         s = {**s, "case": str(args.case), "rating": plain(train_rating(case, s)), "elapsed_s": time.perf_counter() - t0}
         s["files"] = s["files"] + ["summary.json"]
         (Path(tmp) / "summary.json").write_text(json.dumps(plain(s), indent=2) + "\n")

@@ -19,6 +19,9 @@ from tca.errors import InputError
 __all__ = ["staged_output", "atomic_write_text", "check_out"]
 
 
+STAGE_NAME_MAX = 200  # characters of --out's name kept in the staging folder's name (.NAME.tmp-XXXXXXXX)
+
+
 @contextlib.contextmanager
 def staged_output(out: str | os.PathLike):
     """Yield a temporary folder; on success move its files into `out`, on error delete it.
@@ -29,7 +32,7 @@ def staged_output(out: str | os.PathLike):
     """
     out = Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.tmp-", dir=out.parent))
+    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name[:STAGE_NAME_MAX]}.tmp-", dir=out.parent))
     try:
         yield tmp
     except BaseException:
@@ -82,10 +85,27 @@ def check_out(out: str, force: bool = False, resume_marker: str | None = None) -
             anc = anc.parent
         if not anc.is_dir():
             raise InputError("--out", out, "a folder path", f"{anc} is a file")
+        _check_names(path, anc, out)
         _probe(anc, out)
     except OSError as e:
         raise InputError("--out", out, "a writable folder", e.strerror or type(e).__name__) from None
     return path
+
+
+def _check_names(path: Path, anc: Path, out: str) -> None:
+    """Every folder still to be made fits the file system's name length (NAME_MAX) and the path length (PATH_MAX)."""
+    try:
+        name_max = os.pathconf(anc, "PC_NAME_MAX")
+        path_max = os.pathconf(anc, "PC_PATH_MAX")
+    except (OSError, ValueError):
+        name_max, path_max = 255, 4096
+    new = path.absolute().relative_to(anc).parts
+    for part in new:
+        if len(part.encode()) > name_max:
+            raise InputError("--out", out, f"a folder whose names have at most {name_max} bytes (the file system's limit)",
+                             f"{part[:20]}... has {len(part.encode())}")
+    if len(str(path.absolute()).encode()) + 32 > path_max:
+        raise InputError("--out", out, f"a path of at most {path_max - 32} bytes", "too long for the file system")
 
 
 def _probe(folder: Path, out: str) -> None:

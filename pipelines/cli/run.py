@@ -1,4 +1,4 @@
-"""One load case in one command: TCA, position, mesh, contact FE, images and report (issue 7).
+"""One load case in one command: TCA, position, mesh, contact FE, images and report.
 
 ``gearfe run CASE.toml --out DIR`` runs a stress case (``kind = "stress"``, see
 :mod:`pipelines.models.stress.run` for its keys) through every stage and writes into DIR: ``summary.json``
@@ -24,6 +24,7 @@ from pathlib import Path
 from tca.errors import InputError
 from tca.pair.te import POSITIONS
 
+from pipelines.cases.stress import torque_record
 from pipelines.cli.interrupt import check_interrupted
 from pipelines.cases.reader import load_case
 from pipelines.cli.outdir import staged_output
@@ -105,11 +106,14 @@ def handle(args) -> int:
         if getattr(args, "inp", False):
             write_inp_job(Path(tmp), run.scene, run.mesh, run.result, s["solve_s"])
             s = {**s, "files": [*s["files"], "job.inp", "crosscheck_ref.npz", "crosscheck_gearfe.json"]}
-        s = {"kind": "run", "case": str(args.case), **s, "elapsed_s": time.perf_counter() - t0}
+        s = {"kind": "run", "case": str(args.case), **s, **torque_record(case), "elapsed_s": time.perf_counter() - t0}
         s["files"] = [*s["files"], "report.html"]
         write_summary(s, Path(tmp) / "summary.json")
         run_html(s, Path(tmp), Path(args.case).read_text())
     width = max(len(k) for k in SHOWN)
+    geo = s.get("pair_geometry")
+    if geo:  # the centre distance analysed and where it comes from (zero backlash of the profile shifts, given)
+        print(f"  {'center_distance_mm':<{width}}  {geo['center_distance_mm']:.6g} ({geo['center_distance_source']})")
     for k in SHOWN:
         v = s.get(k)
         print(f"  {k:<{width}}  {v:.6g}" if isinstance(v, float) else f"  {k:<{width}}  {v}")

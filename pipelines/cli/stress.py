@@ -20,6 +20,7 @@ import sys
 import time
 from pathlib import Path
 
+from pipelines.cases.stress import torque_record
 from pipelines.cli.interrupt import check_interrupted
 from pipelines.cli.outdir import staged_output
 from pipelines.cases.kinds import read_case
@@ -56,10 +57,13 @@ def handle(args) -> int:
         if args.inp:
             write_inp_job(Path(tmp), run.scene, run.mesh, run.result, summary["solve_s"])
             files += ["job.inp", "crosscheck_ref.npz", "crosscheck_gearfe.json"]
-        summary = {"kind": "stress", "case": str(args.case), **summary, "files": files,
+        summary = {"kind": "stress", "case": str(args.case), **summary, **torque_record(case), "files": files,
                    "elapsed_s": time.perf_counter() - t0}
         (Path(tmp) / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
     width = max(len(k) for k in SHOWN)
+    geo = summary.get("pair_geometry")
+    if geo:  # the centre distance analysed and where it comes from (zero backlash of the profile shifts, given)
+        print(f"  {'center_distance_mm':<{width}}  {geo['center_distance_mm']:.6g} ({geo['center_distance_source']})")
     for k in SHOWN:
         v = summary.get(k)
         print(f"  {k:<{width}}  {v:.6g}" if isinstance(v, float) else f"  {k:<{width}}  {v}")

@@ -28,12 +28,13 @@ base case's choice of position. Positions through a mesh cycle::
                       # tca.steps_per_cycle); column "positions.step" = i
     # or: phi1_deg = [-6.0, -5.5, ...]   plain driving-gear angles (column "phi1_deg")
 
-The positions are the innermost axis. A stress sweep over two or more positions also writes
+The positions are the innermost axis; a ``[positions]`` table alone (no ``[[axes]]``) is a grid too. A stress sweep over two or more positions also writes
 ``DIR/te_loaded.png`` (unloaded TCA TE and loaded TE = TCA TE + FE elastic rotation of the driven
 body, vs φ1) and ``DIR/load_share.png`` (share of the contact force of each modelled tooth pair vs
 φ1), one curve per combination of the other axes.
 
-Every grid point is validated before anything runs (a bad key or value: exit status 2, no files,
+Every grid point is validated before anything runs, and grid points are distinct cases (a value listed twice
+in an axis, or two combinations of the axes giving the same case, are refused: they would share a folder) (a bad key or value: exit status 2, no files,
 the error names the grid point); a grid has at most ``MAX_GRID_POINTS`` (10^5) points, and
 ``--scheduler`` is probed (TCP, 3 s) before anything else.
 Each point runs in ``DIR/cases/<id>/`` (written under a temporary name and renamed when finished),
@@ -107,13 +108,14 @@ def build_grid(sweep_path: str | Path) -> tuple[str, list[dict], list[str]]:
     sweep_path = Path(sweep_path)
     t = load_case(sweep_path)
     task = t.get("task", str, "tca", choices=TASKS)
-    axes = t.tables("axes")
+    axes = t.tables("axes", required=False) or []  # a stress sweep may have only a [positions] table
     keys, values = [], []
     for a in axes:
         k = a.get("key", str)
         v = a.get("values", list)
         if not v:
             raise InputError(f"{a.path}.values", v, "a non-empty list")
+
         if k in keys:
             raise InputError(f"{a.path}.key", k, "a key not already swept by another axis")
         a.done()
@@ -143,7 +145,15 @@ def build_grid(sweep_path: str | Path) -> tuple[str, list[dict], list[str]]:
     if size > MAX_GRID_POINTS:
         raise InputError("axes", " x ".join(str(len(v)) for v in values),
                          f"a grid of at most {MAX_GRID_POINTS} points (the product of the axes' lengths is {size})")
-    points = []
+    for i, v in enumerate(values[:len(axes)]):
+        seen = set()
+        for x in v:
+            tag = json.dumps(x, sort_keys=True, default=str)
+            if tag in seen:  # the same point twice would race for its folder on a cluster
+                raise InputError(f"axes[{i}].values", x, "distinct values in an axis", "listed twice: two grid points "
+                                 "would be the same case")
+            seen.add(tag)
+    points, ids = [], {}
     for combo in itertools.product(*values):
         named = dict(zip(keys, combo))
         case = copy.deepcopy(cases[named.get("base", bases[0])])
@@ -157,6 +167,11 @@ def build_grid(sweep_path: str | Path) -> tuple[str, list[dict], list[str]]:
                 _set(case, k, v, "axes.key")
                 shown[k] = v
         ident = hashlib.sha1(json.dumps(case, sort_keys=True, default=str).encode()).hexdigest()[:12]
+        if ident in ids:  # two combinations of the axes give the same case (e.g. a value equal to the base's)
+            where = lambda vals: ", ".join(f"{k} = {v!r}" for k, v in vals.items())  # noqa: E731
+            raise InputError("axes", where(shown), "axes whose grid points are distinct cases",
+                             f"the same case as grid point {where(ids[ident])}")
+        ids[ident] = shown
         points.append({"id": ident, "values": shown, "case": case})
     return task, points, keys
 

@@ -122,9 +122,12 @@ def tangency_system(f1: PlacedFlank, f2: PlacedFlank, phi1: np.ndarray):
 
 
 def boundary_derivs(flank: PlacedFlank, loc: SurfacePoints, u, which: int):
-    """Value, d/du and d/dv of working-area constraint `which` (0 fillet, 1 tip, 2 z_max, 3 z_min), or of the
-    ridge of an end relief (4 at the z_max end, 5 at the z_min end; :mod:`tca.pair.relief`)."""
+    """Value, d/du and d/dv of working-area constraint `which` (0 fillet, 1 tip, 2 z_max, 3 z_min), of the
+    ridge of an end relief (4 at the z_max end, 5 at the z_min end) or of the kink of a tip relief (6: the
+    rack parameter u_s where the relief starts, positive on the relieved side; :mod:`tca.pair.relief`)."""
     g = flank.gear
+    if which == 6:
+        return u - g.rack.relief_start, np.ones_like(u), np.zeros_like(u)
     ar = g.area(flank.side)
     if which == 0:
         return ar.u_form - u, -np.ones_like(u), np.zeros_like(u)

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 import numpy as np
 
@@ -64,7 +64,7 @@ class Gear:
     pressure_angle: float  # normal pressure angle [rad]
     face_width: float  # [mm]
     helix: float = 0.0  # helix angle at the pitch cylinder, magnitude [rad]
-    hand: int = 1  # +1 right, -1 left
+    hand: int = 1  # +1 right, -1 left ('right' and 'left' are accepted and stored as +1 and -1)
     reference_helix: float | None = None  # helix of the rack/transverse geometry [rad]
     internal: bool = False
     profile_shift: float = 0.0  # x, positive thickens the tooth
@@ -95,8 +95,10 @@ class Gear:
             raise InputError(f"{f}.face_width_mm", self.face_width, "> 0")
         if not (0 <= self.helix < math.radians(45)):
             raise InputError(f"{f}.helix_deg", math.degrees(self.helix), "in [0, 45)")
-        if self.hand not in (1, -1):
-            raise InputError(f"{f}.hand", self.hand, "'right' (+1) or 'left' (-1)")
+        if isinstance(self.hand, str) and self.hand in ("right", "left"):  # the case file's words, in Python too
+            object.__setattr__(self, "hand", 1 if self.hand == "right" else -1)
+        if isinstance(self.hand, bool) or self.hand not in (1, -1):
+            raise InputError(f"{f}.hand", self.hand, "+1 or 'right', -1 or 'left'")
         if self.reference_helix is not None and not (0 <= self.reference_helix < math.radians(45)):
             raise InputError(f"{f}.reference_helix_deg", math.degrees(self.reference_helix), "in [0, 45)")
         if not (-1.5 <= self.profile_shift <= 1.5):
@@ -114,7 +116,7 @@ class Gear:
         if self.end_relief is not None:
             check_amount(self.end_relief, f, self.face_width, self.normal_thickness)
         self.rack  # builds and validates the rack-cutter
-        self._check_flanks()
+        _flanks_checked(self)
 
     # ------------------------------------------------------------------ basic geometry
     @property
@@ -189,7 +191,8 @@ class Gear:
                               self.parabola_pos, self.parabola_neg, self.parabola_apex, tr.amount,
                               bare.u_at_radius(1, tr.start_radius), ar.u_tip, tr.power)
         except InputError as e:
-            raise InputError(f"{self.name}.{e.field}", e.value, e.valid) from None
+            field = e.field if e.field.startswith(f"{self.name}.") else f"{self.name}.{e.field}"
+            raise InputError(field, e.value, e.valid, e.why) from None
 
     def segments(self, side: int):
         """Rack pieces (root, fillet, flank) generating tooth flank `side`."""
@@ -368,3 +371,11 @@ class Gear:
             gt, _ = self.profile(side, np.array(self.area(side).u_tip))
             a[side] = math.atan2(gt[1], gt[0])
         return self.r_tip * (a[1] + a[-1])
+
+
+@lru_cache(maxsize=1024)
+def _flanks_checked(gear: Gear) -> bool:
+    """The design checks of a gear's flanks, once per gear data (a case read by several readers, a sweep's grid
+    points and the pair checks build equal gears again): a gear that fails raises, and is not remembered."""
+    gear._check_flanks()
+    return True

@@ -35,6 +35,7 @@ import numpy as np
 from tca.contact.systems import PlacedFlank
 from tca.errors import GeometryError, InputError
 from tca.geometry.gear import Gear
+from tca.geometry.involute import zero_backlash_center_distance
 from tca.numerics.transforms import Mount, rot_x, rot_y
 
 __all__ = ["Misalignment", "GearPair"]
@@ -68,7 +69,7 @@ class GearPair:
     gear1: Gear
     gear2: Gear
     misalignment: Misalignment = field(default_factory=Misalignment)
-    center_distance: float | None = None  # default: standard (pitch circles tangent) [mm]
+    center_distance: float | None = None  # default: zero backlash from the profile shifts (tca.geometry.involute) [mm]
     side1: int = 1
     side2: int = -1
     mount1: Mount | None = None  # explicit mounts (both or none), replacing the reference ones
@@ -156,9 +157,15 @@ class GearPair:
         return r1 + r2 if self.kind == "external" else abs(r2 - r1)
 
     @property
+    def zero_backlash_center_distance(self) -> float:
+        """Operating centre distance of zero backlash from the profile shifts, inv alpha_w [mm]
+        (:func:`tca.geometry.involute.zero_backlash_center_distance`; the standard one without shifts)."""
+        return zero_backlash_center_distance(self.gear1, self.gear2)
+
+    @property
     def E(self) -> float:
-        """Nominal centre distance [mm] (before misalignment)."""
-        return self.standard_center_distance if self.center_distance is None else self.center_distance
+        """Nominal centre distance [mm] (before misalignment): the given one, or the zero-backlash one."""
+        return self.zero_backlash_center_distance if self.center_distance is None else self.center_distance
 
     @property
     def ratio(self) -> float:

@@ -15,11 +15,13 @@ from scipy.interpolate import CubicSpline
 
 from tca.contact.systems import PlacedFlank, tangency_system
 from tca.errors import ConvergenceError
+from tca.geometry.involute import working_pressure_angle
 from tca.numerics.newton import NewtonOptions, PreferredPoint, newton
 from tca.pair.gear_pair import GearPair
 from tca.pair.bounded import bounded_pass
 from tca.pair.relief import relief_pass
 from tca.pair.result import ContactKind, ReferencePairSolution, TCAOptions
+from tca.pair.sections import section_tangency
 
 __all__ = ["solve_reference_pair", "classify_tangency", "in_domain"]
 
@@ -27,7 +29,9 @@ __all__ = ["solve_reference_pair", "classify_tangency", "in_domain"]
 def _contact_ratio(pair: GearPair) -> float:
     """Transverse + overlap contact ratio of the nominal involute pair (sizes the search range)."""
     g1, g2 = pair.gear1, pair.gear2
-    at = g1.transverse_pressure_angle
+    at = working_pressure_angle(g1, g2, pair.E)
+    if not math.isfinite(at):
+        at = g1.transverse_pressure_angle
     pbt = 2 * math.pi * g1.r_b / g1.teeth
     a1 = math.sqrt(max(g1.r_tip**2 - g1.r_b**2, 0.0))
     a2 = math.sqrt(max(g2.r_tip**2 - g2.r_b**2, 0.0))
@@ -55,6 +59,25 @@ def _solve_one(fun, x0, tol, prefer: PreferredPoint, maxiter=20):
     res = newton(fun, x0[None, :], NewtonOptions(tol=tol, maxiter=maxiter, max_backtracks=8), prefer=prefer,
                  raise_on_failure=False)
     return res.x[0], bool(res.converged[0]), float(res.residual[0]), int(res.iterations[0])
+
+
+def _by_sections(f1, f2, phi: float, guesses, tol: float, reach: float = math.inf):
+    """The fallback of a failed Newton solve at phi: :func:`tca.pair.sections.section_tangency` from each guess in
+    turn, in both surfaces' domains and within ``reach`` modules of both working areas, or None."""
+    ar = f1.gear.area(f1.side)
+    centre = (0.5 * (ar.u_form + ar.u_tip), 0.5 * (ar.z_min + ar.z_max))
+    reach = reach * max(f1.gear.module, f2.gear.module)
+    for x0 in guesses:
+        if x0 is None or not np.all(np.isfinite(x0)):
+            continue
+        r = section_tangency(f1, f2, phi, np.asarray(x0, float), tol, centre)
+        if r is not None and r[1] < tol and in_domain(f1, f2, r[0][None])[0] and \
+                _constraints(f1, f2, r[0][None]).max() <= reach:
+            return r[0]
+    return None
+
+
+RESCUE_REACH = 0.5  # [modules] how far outside the working areas a start found by sections may lie
 
 
 PREFER_WEIGHTS = np.array([1e-3, 1e-3, 0.0, 0.0, 0.0])
@@ -110,6 +133,14 @@ def in_domain(f1, f2, x) -> np.ndarray:
 
 
 DEEP_INSIDE = 0.05  # [mm] a tangency this far inside both working areas must have neighbours
+JUMP = 2.0  # [modules] a solution this far (u1, v1) from its continuation guess is another tangency: retried
+
+
+def _near(x: np.ndarray, guess: np.ndarray, jump: float) -> np.ndarray:
+    """Solutions (n, 5) within `jump` [mm] of their guesses on flank 1 (u1, v1): a nearly singular system
+    (a crowned helical pair) lets Newton run along the near-line of contact to a far tangency of the
+    extended surfaces, off the teeth (then the sections fallback starts from the guess)."""
+    return np.hypot(x[:, 0] - guess[:, 0], x[:, 1] - guess[:, 1]) <= jump
 
 
 def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_cycles: float | None = None,
@@ -137,8 +168,15 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
     total_its = 0
 
     out_of_mesh = max(pair.gear1.module, pair.gear2.module)
+    jump = JUMP * out_of_mesh
+
+    relief_u = [(k, f.gear.rack.relief_start - 0.5 * f.gear.module) for k, f in ((0, f1), (2, f2))
+                if f.gear.tip_relief is not None]
 
     def deep(x):
+        # near a tip relief the tangency may end at its kink (tca.pair.relief takes over there)
+        if any(x[k] > u_near for k, u_near in relief_u):
+            return False
         return bool(np.all(_constraints(f1, f2, x[None])[0] < -DEEP_INSIDE))
 
     # ---- tangency: coarse continuation from the pitch point in both directions
@@ -146,6 +184,11 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
     xs, conv, res, its = _solve_one(tangency_system(f1, f2, np.array([phi1_0])), x0, opts.tol, prefer, 60)
     total_its += its
     i0 = J
+    if not (conv and in_domain(f1, f2, xs[None])[0]):
+        # the start needs a tangency near the teeth (one far off them on the extended surfaces, on a misaligned
+        # helical pair, says nothing of the mesh: the search for edge contacts takes over, as when Newton fails)
+        xs = _by_sections(f1, f2, phi1_0, (x0,), opts.tol, reach=RESCUE_REACH)
+        conv = xs is not None
     if conv and in_domain(f1, f2, xs[None])[0]:
         X[i0], tan_ok[i0] = xs, True
     c = opts.coarse_every
@@ -174,13 +217,19 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
                            NewtonOptions(tol=opts.tol, maxiter=20, max_backtracks=8), prefer=prefer,
                            raise_on_failure=False)
                 total_its += int(r.iterations.sum())
-                good = r.converged & in_domain(f1, f2, r.x)
+                good = r.converged & in_domain(f1, f2, r.x) & _near(r.x, guess, jump)
                 for q, i in enumerate(targets):
                     if not good[q]:
                         # retry once from the last solution; then the pair has left its mesh (or raise)
                         xs, conv, res, its = _solve_one(tangency_system(f1, f2, np.array([phis[i]])), X[hist[-1]],
                                                         opts.tol, prefer, maxiter=10)
                         total_its += its
+                        conv = conv and bool(_near(xs[None], guess[q][None], jump)[0])
+                        if not (conv and in_domain(f1, f2, xs[None])[0]):
+                            xs = _by_sections(f1, f2, phis[i], (guess[q], X[hist[-1]]), opts.tol)
+                            conv = xs is not None
+                            if conv:
+                                res = 0.0
                         if not (conv and in_domain(f1, f2, xs[None])[0]):
                             if deep(X[hist[-1]]):
                                 raise ConvergenceError("pair TCA (tangency)", f"phi1 = {math.degrees(phis[i]):.6f} deg",
@@ -221,14 +270,19 @@ def solve_reference_pair(pair: GearPair, opts: TCAOptions = TCAOptions(), span_c
             r = newton(tangency_system(f1, f2, phis[fine]), guess, NewtonOptions(tol=opts.tol, maxiter=40),
                        prefer=prefer, raise_on_failure=False)
             total_its += int(r.iterations.sum())
-            good = r.converged & in_domain(f1, f2, r.x)
+            good = r.converged & in_domain(f1, f2, r.x) & _near(r.x, guess, jump)
             X[fine[good]], tan_ok[fine[good]] = r.x[good], True
             for q in np.flatnonzero(~good):
                 i = fine[q]
                 nb = coarse[np.argmin(np.abs(coarse - i))]
+                # second chance by sections (near-line contacts), then from the nearest solved neighbour
+                xs = _by_sections(f1, f2, phis[i], (guess[q], X[nb]), opts.tol)
+                if xs is not None:
+                    X[i], tan_ok[i] = xs, True
+                    continue
                 if not deep(X[nb]):
                     continue  # near the end of the mesh: the bounded search takes over
-                # second chance from the nearest solved neighbour: a failure here is an error
+                # a failure here is an error
                 xs, conv, res, its = _solve_one(tangency_system(f1, f2, np.array([phis[i]])), X[nb], opts.tol, prefer)
                 if not (conv and in_domain(f1, f2, xs[None])[0]):
                     raise ConvergenceError("pair TCA (tangency)", f"phi1 = {math.degrees(phis[i]):.6f} deg", res, its)

@@ -6,7 +6,8 @@
   [arcsec], total normal force [N], peak pressure [MPa], mesh stiffness [N/um], load share of
   each pair of teeth (``share.<driver><j1>-<driven><j2>``, the gears' own tooth indices as in
   ``gearfe stress``), pairs within reach and in contact;
-- ``pressure.csv``: the slices of every contact line (position, pair, ξ, point, load, pressure);
+- ``pressure.csv``: the slices of every contact line (position, pair, ξ, point, load, pressure), streamed to
+  disk position by position (:mod:`pipelines.models.ltca.plan`: the resource plan checked before the build);
 - ``te_loaded.png``, ``load_share.png``, ``pressure.png`` (Hertz pressure along the contact lines
   through the cycle, one panel per torque), ``mesh_stiffness.png`` (:mod:`pipelines.render.ltca`);
 - the summary (``summary.json`` by the CLI): build and solve times, the cost of a further position
@@ -33,13 +34,15 @@ from tca.pair.analysis import ARCSEC, run_pair_tca
 from tca.planetary.subgear import MeshTE
 
 from pipelines.models.ltca.options import LTCAOptions
+from pipelines.models.ltca.plan import PLOT_POSITIONS, LTCAPlan, check_plan
 from pipelines.models.ltca.compliance import FlankGrid, flank_compliance, strip_constant, weber_constant
 from pipelines.models.ltca.contact import contact_lines, solve_contact, teeth_in_reach
 from pipelines.models.stress.case import StressCase
 from pipelines.models.stress.model import ELEMENTS
 from pipelines.models.stress.scene import mesh_contact
 
-__all__ = ["LTCAModel", "build_model", "run_ltca", "fe_check", "TARGETS", "progress_bar"]
+__all__ = ["LTCAModel", "build_model", "run_ltca", "fe_check", "TARGETS", "progress_bar", "ProgressBar", "solve_positions",
+           "PRESSURE_COLUMNS"]
 
 # acceptance of issue 18 against the full contact FE: elastic rotation (relative), load share (absolute),
 # peak pressure (relative)
@@ -59,6 +62,7 @@ class LTCAModel:
     local: float  # constant c of the Hertzian flattening (pipelines.models.ltca.compliance.flattening)
     build_s: float
     tca_s: float
+    plan: LTCAPlan | None = None  # the resource plan checked before the flank models were built
 
 
 def build_model(case: StressCase, opts: LTCAOptions, say=None) -> LTCAModel:
@@ -78,6 +82,10 @@ def build_model(case: StressCase, opts: LTCAOptions, say=None) -> LTCAModel:
         if say is not None:
             say(f"build: {teeth} teeth per gear ([mesh] teeth = {case.mesh.teeth}): pairs of teeth within reach span them")
         case = dataclasses.replace(case, mesh=dataclasses.replace(case.mesh, teeth=teeth))
+    plan = check_plan(case, opts)  # GEARFE_MAX_MEMORY_GB, before the flank models are built
+    if say is not None:
+        say(f"plan: per gear about {max(plan.elements)} elements, {max(plan.dofs)} DOF, {max(plan.flank_nodes)} flank "
+            f"nodes, {plan.memory_gb:.2g} GB (limit GEARFE_MAX_MEMORY_GB)")
     i = int(np.argmax(r.te[:-1] if len(r.te) > 1 else r.te))
     c = mesh_contact(r, float(r.phi1[i]))
     coarse = hz  # the body's elements as fine as the axial grid (a coarser body is too stiff in bending, docs/ltca.md)
@@ -92,21 +100,34 @@ def build_model(case: StressCase, opts: LTCAOptions, say=None) -> LTCAModel:
     c_loc = strip_constant(case.fe.material) if opts.local == "strip" else weber_constant(case.fe.material.nu)
     if say is not None:
         say(f"build: Hertzian flattening constant c = {c_loc:+.4f} ({opts.local})")
-    return LTCAModel(case, opts, r, mte, tuple(flanks), (hu, hz, ds), c_loc, time.perf_counter() - t0, t_tca)
+    return LTCAModel(case, opts, r, mte, tuple(flanks), (hu, hz, ds), c_loc, time.perf_counter() - t0, t_tca, plan)
 
 
-def progress_bar(prefix: str, stream=None):
-    """A callable (done, total) drawing a text progress bar on stderr."""
-    stream = stream or sys.stderr
+class ProgressBar:
+    """A callable (done, total) drawing a text progress bar on stderr; ``close()`` ends an unfinished bar's line
+    (so that an error raised mid-run starts on a line of its own)."""
 
-    def bar(done: int, total: int) -> None:
+    def __init__(self, prefix: str, stream=None):
+        self.prefix, self.stream, self.open = prefix, stream or sys.stderr, False
+
+    def __call__(self, done: int, total: int) -> None:
         n = 30 * done // max(total, 1)
-        stream.write(f"\r{prefix} [{'#' * n}{'.' * (30 - n)}] {done}/{total}")
-        if done >= total:
-            stream.write("\n")
-        stream.flush()
+        self.stream.write(f"\r{self.prefix} [{'#' * n}{'.' * (30 - n)}] {done}/{total}")
+        self.open = done < total
+        if not self.open:
+            self.stream.write("\n")
+        self.stream.flush()
 
-    return bar
+    def close(self) -> None:
+        if self.open:
+            self.stream.write("\n")
+            self.stream.flush()
+            self.open = False
+
+
+def progress_bar(prefix: str, stream=None) -> ProgressBar:
+    """A :class:`ProgressBar` on ``stream`` (stderr)."""
+    return ProgressBar(prefix, stream)
 
 
 def _pair_name(model: LTCAModel, teeth) -> str:
@@ -121,14 +142,24 @@ def positions(model: LTCAModel) -> np.ndarray:
     return phi0 + p1 * np.arange(model.opts.positions) / model.opts.positions
 
 
-def solve_positions(model: LTCAModel, phis, torques, bar=None) -> tuple[list, list, dict]:
-    """Rows of results.csv and pressure.csv for every position and torque; timing record."""
+PRESSURE_COLUMNS = ("phi1_deg", "torque_nm", "pair", "xi_mm", "x_mm", "y_mm", "z_mm", "force_n", "line_load_n_per_mm",
+                    "pressure_mpa")
+
+
+def solve_positions(model: LTCAModel, phis, torques, bar=None, pressure_sink=None) -> tuple[list, list, dict]:
+    """Rows of results.csv and pressure.csv for every position and torque; timing record.
+
+    With ``pressure_sink`` (a callable taking a list of pressure rows) the pressure rows of every position go
+    to it as they are solved and only those of at most :data:`PLOT_POSITIONS` evenly spread positions are
+    returned (for the plots): a long run keeps its slices on disk, not in memory."""
     case, hu_hz_ds = model.case, model.sizes
     material = case.fe.material
     rows, prows = [], []
     t_lines = t_solve = 0.0
     n = len(phis)
+    stride = 1 if pressure_sink is None else max(1, math.ceil(n / PLOT_POSITIONS))
     for ip, phi in enumerate(phis):
+        here = []
         t0 = time.perf_counter()
         L = contact_lines(case.pair, model.mte, float(phi), model.flanks, hu_hz_ds[2], model.opts.reach, material)
         t1 = time.perf_counter()
@@ -150,10 +181,14 @@ def solve_positions(model: LTCAModel, phis, torques, bar=None) -> tuple[list, li
             row.update({f"length_mm.{n}": float(L.length[L.pair == q].sum()) for q, n in enumerate(names)})  # K_Hα
             rows.append(row)
             for j in np.flatnonzero(s.F > 0):
-                prows.append({"phi1_deg": math.degrees(phi), "torque_nm": T * 1e-3, "pair": names[L.pair[j]],
+                here.append({"phi1_deg": math.degrees(phi), "torque_nm": T * 1e-3, "pair": names[L.pair[j]],
                               "xi_mm": float(L.xi[j]), "x_mm": float(L.x[j, 0]), "y_mm": float(L.x[j, 1]),
                               "z_mm": float(L.x[j, 2]), "force_n": float(s.F[j]), "line_load_n_per_mm": float(s.F[j] / L.length[j]),
                               "pressure_mpa": float(s.pressure[j])})
+        if pressure_sink is not None:
+            pressure_sink(here)
+        if ip % stride == 0:
+            prows += here
         if bar is not None:
             bar(ip + 1, n)
     nt = max(len(torques), 1)
@@ -252,10 +287,12 @@ def run_ltca(case: StressCase, opts: LTCAOptions, out: Path, say=None, bar=None,
     phis = positions(model)
     torques = opts.torques or (case.torque,)
     t1 = time.perf_counter()
-    rows, prows, timing = solve_positions(model, phis, torques, bar)
+    with open(out / "pressure.csv", "w", newline="") as fh:  # streamed: a long run keeps its slices on disk
+        w = csv.DictWriter(fh, fieldnames=PRESSURE_COLUMNS)
+        w.writeheader()
+        rows, prows, timing = solve_positions(model, phis, torques, bar, w.writerows)
     t_solve = time.perf_counter() - t1
     _write_csv(out / "results.csv", rows)
-    _write_csv(out / "pressure.csv", prows)
     from pipelines.render.ltca import plot_ltca
 
     files = ["results.csv", "pressure.csv"] + plot_ltca(rows, prows, out)
@@ -268,6 +305,7 @@ def run_ltca(case: StressCase, opts: LTCAOptions, out: Path, say=None, bar=None,
     summary = {
         "kind": "ltca", "title": case.title, "model": case.model, "positions": len(phis),
         "torques_nm": [T * 1e-3 for T in torques],
+        "plan": model.plan.summary() if model.plan is not None else None,
         "flank_grid_mm": {"profile": hu, "axial": hz, "slice": ds, "teeth": model.case.mesh.teeth},
         "local": {"model": opts.local, "constant": model.local},
         "flanks": {fc.gear.name: {k: v for k, v in fc.info.items()} for fc in model.flanks},

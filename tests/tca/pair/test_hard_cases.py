@@ -11,7 +11,7 @@ from tca.pair.analysis import ContactKind, TCAOptions, run_pair_tca
 from tca.report_data import table_1_1_planet, table_1_1_sun
 
 d = math.radians
-from tca.units import ARCMIN
+from tca.units import ARCMIN, ARCSEC
 
 
 @pytest.fixture(scope="module")
@@ -81,3 +81,27 @@ def test_profile_crowning_alone_gives_face_edge_contact():
     r = run_pair_tca(GearPair(g1, g2, Misalignment(d_gamma=3 * ARCMIN)), TCAOptions(steps_per_cycle=12))
     assert np.all(r.kind != ContactKind.SURFACE)
     assert r.max_residual < 1e-10
+
+
+@pytest.mark.parametrize("beta_deg", [30.0, 40.0])
+def test_aligned_helical_pair_converges_at_a_large_helix(beta_deg):
+    # issue 24: Newton on the tangency failed on every aligned involute helical pair with beta >= 25 deg
+    # (line contact, nearly singular system); tca.pair.sections takes over. Conjugate flanks: TE = 0.
+    g1 = Gear("pinion", 20, 3.0, d(20), 30.0, helix=d(beta_deg), hand=1)
+    g2 = Gear("wheel", 52, 3.0, d(20), 30.0, helix=d(beta_deg), hand=-1)
+    r = run_pair_tca(GearPair(g1, g2), TCAOptions(cycles=1, steps_per_cycle=8))
+    assert r.max_residual < 1e-10
+    assert np.all(np.isfinite(r.te)) and np.ptp(r.te) < 1e-12  # [rad]: conjugate involute flanks
+
+
+def test_aligned_crowned_helical_pair_converges():
+    # issue 24: z 23/67, m_n 3 mm, beta 15 deg, b 40 mm, lead crowning 10 um, delta gamma = 0 was refused
+    from tca.geometry.modifications.crowning import DiskPlunge
+    crown = DiskPlunge(100.0, 10e-3 / 20.0**2)  # C_beta = a_pl (b/2)^2
+    g1 = Gear("pinion", 23, 3.0, d(20), 40.0, helix=d(15), hand=1, plunge=crown)
+    g2 = Gear("wheel", 67, 3.0, d(20), 40.0, helix=d(15), hand=-1, plunge=crown)
+    r = run_pair_tca(GearPair(g1, g2), TCAOptions(cycles=1, steps_per_cycle=8))
+    assert r.max_residual < 1e-10
+    assert np.all(np.isfinite(r.te))
+    # crowned flanks touch at a point near the middle of the face: the TE stays below a second of arc
+    assert np.ptp(r.te) / ARCSEC < 1.0
