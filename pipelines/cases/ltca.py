@@ -24,40 +24,15 @@ from tca.errors import InputError
 
 from pipelines.cases.schema import Table
 from pipelines.cases.stress import TORQUE_KEYS, check_unit_load, read_stress_case, read_unloaded_pair
-from pipelines.models.ltca.options import LOCAL, LTCAOptions
+from pipelines.cases.ltca_options import read_ltca_options
+from pipelines.models.ltca.options import LTCAOptions
 from pipelines.models.ltca.plan import check_plan
 from pipelines.models.stress.case import StressCase
 
-__all__ = ["read_ltca_case", "read_ltca_options", "LOAD_KEYS", "loaded", "read_loaded_pair"]
+__all__ = ["read_ltca_case", "LOAD_KEYS", "loaded", "read_loaded_pair"]
 
 # keys of a pair file that only the stress commands use (a pair file with any of them is read in full for gearfe tca)
 LOAD_KEYS = TORQUE_KEYS + ("model", "position", "phi1_deg", "roll_deg", "mesh", "fe", "ltca")
-
-def read_ltca_options(t: Table | None, torque: float) -> LTCAOptions:
-    """The :class:`LTCAOptions` of an ``[ltca]`` table (module docstring); ``torque`` [N mm] the default torque."""
-    if t is None:
-        return LTCAOptions(torques=(torque,))
-    pos = dict(lo=0.0, lo_open=True, hi=100.0)
-    tq = t.get("torques_nm", list, None)
-    if tq is not None:
-        if not tq or any(isinstance(x, bool) or not isinstance(x, (int, float)) or not (0 < x <= 1e7) for x in tq):
-            raise InputError("ltca.torques_nm", tq, "a non-empty list of torques in (0, 1e7] N m")
-        torques = tuple(float(x) * 1e3 for x in tq)
-    else:
-        torques = (torque,)
-    o = LTCAOptions(
-        positions=t.get("positions", int, 100, lo=1, hi=100000),
-        torques=torques,
-        profile_size=t.get("profile_size_mm", float, None, **pos),
-        axial_size=t.get("axial_size_mm", float, None, **pos),
-        slice=t.get("slice_mm", float, None, **pos),
-        reach=t.get("reach_um", float, 50.0, lo=0.0, lo_open=True, hi=5000.0) * 1e-3,
-        check_positions=t.get("check_positions", int, 0, lo=0, hi=100),
-        local=t.get("local", str, "strip", choices=LOCAL),
-    )
-    t.done()
-    return o
-
 
 def loaded(case: Table) -> bool:
     """Whether a case carries a load (a stress file, or a pair file with any of :data:`LOAD_KEYS`)."""

@@ -26,6 +26,7 @@ from tca.pair.checks import check_pair
 from tca.pair.te import POSITIONS
 from tca.planetary.train import ShaftErrors
 
+from pipelines.cases.ltca_options import read_ltca_options
 from pipelines.cases.reader import ARCMIN, read_gears, read_pair, read_tca_options
 from pipelines.cases.schema import Table
 from pipelines.cases.planetary import read_regulation_options, read_train
@@ -228,8 +229,6 @@ def read_stress_case(case: Table, ltca: bool = True) -> StressCase:
                          mesh=mesh, fe=fe)
     out = with_rating(case, out)  # [rating]: ISO 6336 (pipelines.cases.rating)
     if ltca and case.has("ltca"):
-        from pipelines.cases.ltca import read_ltca_options  # that module reads on top of this one
-
         read_ltca_options(case.table("ltca"), out.torque)
     case.done()
     return out

@@ -1,0 +1,40 @@
+"""The ``[ltca]`` table of a pair case: :func:`read_ltca_options` (keys in docs/cases.md).
+
+It sits below the stress and ltca readers (:mod:`pipelines.cases.stress` checks an ``[ltca]`` table that a
+``gearfe stress`` or ``gearfe tca`` run leaves unused; :mod:`pipelines.cases.ltca` reads it for ``gearfe ltca``).
+"""
+
+from __future__ import annotations
+
+from tca.errors import InputError
+
+from pipelines.cases.schema import Table
+from pipelines.models.ltca.options import LOCAL, LTCAOptions
+
+__all__ = ["read_ltca_options"]
+
+
+def read_ltca_options(t: Table | None, torque: float) -> LTCAOptions:
+    """The :class:`LTCAOptions` of an ``[ltca]`` table (module docstring); ``torque`` [N mm] the default torque."""
+    if t is None:
+        return LTCAOptions(torques=(torque,))
+    pos = dict(lo=0.0, lo_open=True, hi=100.0)
+    tq = t.get("torques_nm", list, None)
+    if tq is not None:
+        if not tq or any(isinstance(x, bool) or not isinstance(x, (int, float)) or not (0 < x <= 1e7) for x in tq):
+            raise InputError("ltca.torques_nm", tq, "a non-empty list of torques in (0, 1e7] N m")
+        torques = tuple(float(x) * 1e3 for x in tq)
+    else:
+        torques = (torque,)
+    o = LTCAOptions(
+        positions=t.get("positions", int, 100, lo=1, hi=100000),
+        torques=torques,
+        profile_size=t.get("profile_size_mm", float, None, **pos),
+        axial_size=t.get("axial_size_mm", float, None, **pos),
+        slice=t.get("slice_mm", float, None, **pos),
+        reach=t.get("reach_um", float, 50.0, lo=0.0, lo_open=True, hi=5000.0) * 1e-3,
+        check_positions=t.get("check_positions", int, 0, lo=0, hi=100),
+        local=t.get("local", str, "strip", choices=LOCAL),
+    )
+    t.done()
+    return o
