@@ -5,6 +5,7 @@ smallest that carry a localized contact (C3D8, refine 0.3): a crowned helical pa
 angle error (one tooth each) and a spur sun on a lead-crowned planet (three teeth each) at the
 position of minimum TE, where two tooth pairs share the load. (An aligned spur pair without lead
 crowning has line contact, which ``gearfe stress`` does not size yet: its Hertz sizing fails.)
+The spur scene's run is a peer run of make bench (marker bench); the crowned one stays in make test.
 Targets of the issue: contact force and reaction torque 0.5 %, load shares 0.02, fillet stress
 3 %, maximum von Mises 5 %, peak contact pressure 10 %; where CalculiX and gearfe differ by more,
 the test asserts the target under a strict xfail carrying the measured value (docs/deviations.md).
@@ -162,6 +163,7 @@ def spur_check(tmp_path_factory):
     return out, _rows(out)
 
 
+@pytest.mark.bench  # the second peer run (three teeth each, ~60 s): make bench
 @needs_ccx
 @pytest.mark.parametrize("q", ["contact force [N]", "reaction torque [N m]"])
 def test_spur_pair_equilibrium_matches_calculix(spur_check, q):
@@ -169,12 +171,14 @@ def test_spur_pair_equilibrium_matches_calculix(spur_check, q):
     assert abs(spur_check[1][q]["difference"]) <= 0.005
 
 
+@pytest.mark.bench  # the second peer run (three teeth each, ~60 s): make bench
 @needs_ccx
 def test_spur_pair_fillet_stress_matches_calculix(spur_check):
     # target of issue 13: 3 %
     assert abs(spur_check[1]["fillet max principal [MPa]"]["difference"]) <= 0.03
 
 
+@pytest.mark.bench  # the second peer run (three teeth each, ~60 s): make bench
 @needs_ccx
 def test_spur_pair_shares_two_tooth_pairs_like_calculix(spur_check):
     # measured 0.500/0.500 (gearfe, Gauss-point contact constraints) against 0.506/0.494 (CalculiX CF): 0.006

@@ -58,6 +58,7 @@ def test_coarse_grid_matches_fine_grid(sun_planet):
     assert np.allclose(a.te_arcsec, b.te_arcsec[::4], atol=1e-7)
 
 
+@pytest.mark.bench  # a grid study (400 positions, ~45 s): make bench; test_coarse_grid_matches_fine_grid stays
 def test_peak_to_peak_is_independent_of_the_grid(sun_planet):
     # the extremes are solved (transitions) or interpolated (vertices): 10 positions per cycle give the
     # peak-to-peak of 400 within 0.01 arcsec, although the grid values alone miss it by ~3 arcsec
