@@ -11,7 +11,17 @@ from tca.errors import InputError
 from pipelines.cases.schema import Table
 from pipelines.models.ltca.options import LOCAL, LTCAOptions
 
-__all__ = ["read_ltca_options"]
+__all__ = ["read_ltca_options", "read_torques"]
+
+
+def read_torques(t: Table, torque: float) -> tuple[float, ...]:
+    """``[ltca] torques_nm`` [N m] as torques [N mm]; ``(torque,)`` [N mm] when the table has none."""
+    tq = t.get("torques_nm", list, None)
+    if tq is None:
+        return (torque,)
+    if not tq or any(isinstance(x, bool) or not isinstance(x, (int, float)) or not (0 < x <= 1e7) for x in tq):
+        raise InputError("ltca.torques_nm", tq, "a non-empty list of torques in (0, 1e7] N m")
+    return tuple(float(x) * 1e3 for x in tq)
 
 
 def read_ltca_options(t: Table | None, torque: float) -> LTCAOptions:
@@ -19,13 +29,7 @@ def read_ltca_options(t: Table | None, torque: float) -> LTCAOptions:
     if t is None:
         return LTCAOptions(torques=(torque,))
     pos = dict(lo=0.0, lo_open=True, hi=100.0)
-    tq = t.get("torques_nm", list, None)
-    if tq is not None:
-        if not tq or any(isinstance(x, bool) or not isinstance(x, (int, float)) or not (0 < x <= 1e7) for x in tq):
-            raise InputError("ltca.torques_nm", tq, "a non-empty list of torques in (0, 1e7] N m")
-        torques = tuple(float(x) * 1e3 for x in tq)
-    else:
-        torques = (torque,)
+    torques = read_torques(t, torque)
     o = LTCAOptions(
         positions=t.get("positions", int, 100, lo=1, hi=100000),
         torques=torques,

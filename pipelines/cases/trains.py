@@ -26,6 +26,7 @@ import math
 from tca.errors import InputError
 from tca.pair.analysis import TCAOptions
 
+from pipelines.cases.ltca_options import read_torques
 from pipelines.cases.rating import read_rating, train_names
 from pipelines.cases.schema import Table
 from pipelines.models.trains.case import TrainCase
@@ -46,13 +47,7 @@ def _read_ltca(t: Table | None, torque: float, tca: TCAOptions, **fixed) -> Trai
     if t is None:
         return TrainOptions(torques=(torque,), tca=tca, **fixed)
     pos = dict(lo=0.0, lo_open=True, hi=100.0)
-    tq = t.get("torques_nm", list, None)
-    if tq is not None:
-        if not tq or any(isinstance(x, bool) or not isinstance(x, (int, float)) or not (0 < x <= 1e7) for x in tq):
-            raise InputError("ltca.torques_nm", tq, "a non-empty list of torques in (0, 1e7] N m")
-        torques = tuple(float(x) * 1e3 for x in tq)
-    else:
-        torques = (torque,)
+    torques = read_torques(t, torque)
     stiff = dict(lo=0.0, lo_open=True, hi=1e6)
     sup = t.get("sun_support_n_per_um", float, None, **stiff)
     pins = t.get("pin_stiffness_n_per_um", float, None, **stiff)

@@ -19,7 +19,7 @@ from tca.errors import InputError
 __all__ = ["staged_output", "atomic_write_text", "check_out"]
 
 
-STAGE_NAME_MAX = 200  # characters of --out's name kept in the staging folder's name (.NAME.tmp-XXXXXXXX)
+STAGE_NAME_MAX = 200  # characters of --out's name kept in the staging folder's name (.NAME.tmp- and a random suffix)
 
 
 @contextlib.contextmanager

@@ -8,9 +8,21 @@ from dataclasses import dataclass
 
 from tca.errors import InputError
 
-__all__ = ["LTCAOptions", "LOCAL"]
+__all__ = ["LTCAOptions", "LOCAL", "check_flank_grid"]
 
 LOCAL = ("strip", "weber")
+
+
+def check_flank_grid(o) -> None:
+    """The flank grid of a pair's or a train's options: sizes [mm] > 0 or None, reach [mm] > 0, a known local law."""
+    for k in ("profile_size", "axial_size", "slice"):
+        v = getattr(o, k)
+        if v is not None and not (v > 0 and math.isfinite(v)):
+            raise InputError(f"ltca.{k}_mm", v, "> 0 mm")
+    if not (o.reach > 0 and math.isfinite(o.reach)):
+        raise InputError("ltca.reach_um", o.reach * 1e3, "> 0 um")
+    if o.local not in LOCAL:
+        raise InputError("ltca.local", o.local, "one of " + ", ".join(repr(x) for x in LOCAL))
 
 
 @dataclass(frozen=True)
@@ -33,14 +45,7 @@ class LTCAOptions:
         if any(not (x > 0 and math.isfinite(x)) for x in t):
             raise InputError("ltca.torques_nm", [x * 1e-3 for x in t], "a list of torques > 0 N m")
         object.__setattr__(self, "torques", t)
-        for k in ("profile_size", "axial_size", "slice"):
-            v = getattr(self, k)
-            if v is not None and not (v > 0 and math.isfinite(v)):
-                raise InputError(f"ltca.{k}_mm", v, "> 0 mm")
-        if not (self.reach > 0 and math.isfinite(self.reach)):
-            raise InputError("ltca.reach_um", self.reach * 1e3, "> 0 um")
-        if self.local not in LOCAL:
-            raise InputError("ltca.local", self.local, "one of " + ", ".join(repr(x) for x in LOCAL))
+        check_flank_grid(self)
         if not (isinstance(self.check_positions, int) and 0 <= self.check_positions <= self.positions):
             raise InputError("ltca.check_positions", self.check_positions, f"an integer in [0, positions = {self.positions}]")
 

@@ -10,7 +10,7 @@ from fem.material import Material
 from tca.errors import InputError
 from tca.pair.analysis import TCAOptions
 
-from pipelines.models.ltca.options import LOCAL
+from pipelines.models.ltca.options import check_flank_grid
 from fem.material import STEEL
 from pipelines.models.stress.model import ELEMENTS
 
@@ -53,14 +53,7 @@ class TrainOptions:
         if not t or any(not (x > 0 and math.isfinite(x)) for x in t):
             raise InputError("ltca.torques_nm", [x * 1e-3 for x in t], "a non-empty list of torques > 0 N m")
         object.__setattr__(self, "torques", t)
-        for k in ("profile_size", "axial_size", "slice"):
-            v = getattr(self, k)
-            if v is not None and not (v > 0 and math.isfinite(v)):
-                raise InputError(f"ltca.{k}_mm", v, "> 0 mm")
-        if not (self.reach > 0 and math.isfinite(self.reach)):
-            raise InputError("ltca.reach_um", self.reach * 1e3, "> 0 um")
-        if self.local not in LOCAL:
-            raise InputError("ltca.local", self.local, "one of " + ", ".join(repr(x) for x in LOCAL))
+        check_flank_grid(self)
         if self.sun_axis not in SUN_AXIS:
             raise InputError("ltca.sun_axis", self.sun_axis, "one of " + ", ".join(repr(x) for x in SUN_AXIS))
         for key, v in (("sun_support_n_per_um", self.sun_support), ("pin_stiffness_n_per_um", self.pin_stiffness)):
