@@ -114,26 +114,46 @@ def _newton_on_sections(fun, sol, tol, v_range, maxiter):
 SCAN_SECTIONS = 41  # sections across the surface's axial range scanned when Newton on the section fails
 
 
+def _sections(fun, ss: np.ndarray, Y0: np.ndarray, tol: float):
+    """y(s) of (S1) at every section ss (k,) from the starts Y0 (k, 4), in one batched Newton solve (each member
+    iterates on its own, as :func:`_inner` would); (x (k, 5), F, J, converged (k,))."""
+    zeros = np.zeros(len(ss), int)
+
+    def g(y, idx):
+        x = np.insert(y, 1, ss[idx], axis=-1)
+        F, J = fun(x, zeros[: len(y)])
+        return F[:, :4], J[:, :4][:, :, _Y]
+
+    r = newton(g, Y0, NewtonOptions(tol=tol, maxiter=30, max_backtracks=10), raise_on_failure=False)
+    x = np.insert(r.x, 1, ss, axis=-1)
+    F, J = fun(x, zeros)
+    return x, F, J, r.converged
+
+
 def _scan(fun, s0: float, y0: np.ndarray, tol: float, centre, v_range):
-    """Roots of h over sections across v_range (a sign change bisected, or |h| < tol); the one nearest s0."""
+    """Roots of h over sections across v_range (a sign change bisected, or |h| < tol); the one nearest s0.
+
+    Every section is solved from the guess first (one batched solve); a section that fails is retried from
+    its nearest solved neighbour, in waves, until a wave solves no further section."""
     ss = np.linspace(*v_range, SCAN_SECTIONS)
-    order = np.argsort(np.abs(ss - s0))
-    sols = {}
-    y = y0
-    for i in order:  # outward from the guess, each section started from the nearest one solved
-        r = _inner(fun, float(ss[i]), y, tol)
-        if r is None:
-            r = _inner(fun, float(ss[i]), y0, tol)
-        if r is not None:
-            sols[i] = r
-            y = r[0][_Y]
+    x, F, J, ok = _sections(fun, ss, np.repeat(np.asarray(y0, float)[None], len(ss), 0), tol)
+    while ok.any() and not ok.all():
+        solved = np.flatnonzero(ok)
+        todo = np.flatnonzero(~ok)
+        near = solved[np.argmin(np.abs(solved[None, :] - todo[:, None]), axis=1)]
+        xt, Ft, Jt, okt = _sections(fun, ss[todo], x[near][:, _Y], tol)
+        if not okt.any():
+            break
+        t = todo[okt]
+        x[t], F[t], J[t], ok[t] = xt[okt], Ft[okt], Jt[okt], True
+    sols = {int(i): (x[i], F[i], J[i]) for i in np.flatnonzero(ok)}
     roots = []
     for i in sorted(sols):
-        x, F, J = sols[i]
-        if abs(F[4]) < tol:
+        xi, Fi, Ji = sols[i]
+        if abs(Fi[4]) < tol:
             roots.append((abs(ss[i] - s0), sols[i]))
         j = i + 1
-        if j in sols and F[4] * sols[j][1][4] < 0:
+        if j in sols and Fi[4] * sols[j][1][4] < 0:
             r = _bisect(fun, sols[i], sols[j], tol)
             if r is not None:
                 roots.append((abs(r[0][1] - s0), r))
