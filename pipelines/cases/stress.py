@@ -191,7 +191,9 @@ def read_stress_case(case: Table, ltca: bool = True) -> StressCase:
     """A :class:`StressCase` from a case table (module docstring); every key is checked, unknown keys rejected.
     ``ltca``: an ``[ltca]`` table (one file per pair) is checked too, and left unused (gearfe ltca reads it itself)."""
     kind = case.get("kind", str, "stress", choices=("stress", "pair"))
-    model = case.get("model", str, "pair", choices=("pair",)) if kind == "pair" else case.get("model", str, choices=MODELS)
+    # model 'train' is read from an isostatic train case (read_train_stress), the file gearfe ltca takes
+    model = (case.get("model", str, "pair", choices=("pair",)) if kind == "pair"
+             else case.get("model", str, choices=tuple(m for m in MODELS if m != "train")))
     title = case.get("title", str, "")
     tkey, tval = read_torque(case)
     if model == "twin" and tkey == "driver_torque_nm":
