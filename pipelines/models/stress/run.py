@@ -21,8 +21,12 @@ Models (:mod:`pipelines.models.stress.scene`): ``pair`` — a gear pair at a TCA
 its rim (Fig. 1.7's sun), driven gear rigid with its rotation free and the torque ``torque_nm``
 against its sense of rotation; ``twin`` — Part 1's twin subgear drive (sun fixed, twin planet
 rigid with only its rotation free, ring rigid with the torque T), positioned by the Part 1 TCA with
-the shaft errors and the axial regulation ΔZ of members a and b. Stress recovery, load share and
-edge contact: :mod:`pipelines.models.stress.results`.
+the shaft errors and the axial regulation ΔZ of members a and b; ``train`` — the whole planetary train of an
+isostatic train case (``kind = "isostatic"``, the file ``gearfe ltca`` takes, read by
+:func:`pipelines.cases.stress.read_train_stress`) at one position of the train LTCA's run
+(:mod:`pipelines.models.stress.train_scene`: torque on the sun, ring held, carrier the frame), with the summary's
+``train`` record of the planets' shares of the FE beside the LTCA's (:mod:`pipelines.models.stress.train_results`).
+Stress recovery, load share and edge contact: :mod:`pipelines.models.stress.results`.
 
 Case file (TOML, ``kind = "stress"``)::
 

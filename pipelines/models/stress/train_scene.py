@@ -93,6 +93,11 @@ def _shift(itf: Interface, e_driver: np.ndarray, e_driven: np.ndarray) -> Interf
     return replace(itf, driver=d, driven=n, point=itf.point + e_slave)
 
 
+def _vec3(v) -> np.ndarray:
+    """A plane offset (2,) [mm] as a vector of S_f."""
+    return np.array([float(v[0]), float(v[1]), 0.0])
+
+
 def _loads(estimator: Estimator | None, pair, mte: MeshTE, c, torque: float):
     """The loaded estimate of one mesh carrying ``torque`` on its driven gear, or (None, reason)."""
     if estimator is None:
@@ -115,7 +120,6 @@ def train_scene(s: TrainSetting, rules: SizeRules, mat: Material, estimator: Est
     r12, r23 = run_pair_tca(p12, s.tca), run_pair_tca(p23, s.tca)
     m12, m23 = MeshTE.from_result(r12), MeshTE.from_result(r23)
     off = offsets(lay, s.errors, s.psi1)
-    e3 = lambda v: np.array([float(v[0]), float(v[1]), 0.0])  # noqa: E731  (plane offset -> S_f vector)
     frames = {(site.planet, site.kind): site.frame for site in lay.sites}
     per = []
     for i in range(n):
@@ -143,9 +147,9 @@ def train_scene(s: TrainSetting, rules: SizeRules, mat: Material, estimator: Est
                                        frames[(i, "sun")]), p12, c12, T_planet, rules, mat, load12)
         r_itf = mesh_interface(Placing("planet-ring", member, (body, "ring"), ("ring", member), "driver",
                                        frames[(i, "ring")]), p23, c23r, T_ring, rules, mat, load23)
-        e_p = e3(off["planets"][i])
-        s_itf = _shift(s_itf, e3(off["sun"]), e_p)
-        r_itf = _shift(r_itf, e_p, e3(off["ring"]))
+        e_p = _vec3(off["planets"][i])
+        s_itf = _shift(s_itf, _vec3(off["sun"]), e_p)
+        r_itf = _shift(r_itf, e_p, _vec3(off["ring"]))
         itfs += [s_itf, r_itf]
         parts += [s_itf.driver, s_itf.driven, r_itf.driver, r_itf.driven]
         o = lay.planet_origin[i] + e_p
@@ -159,7 +163,7 @@ def train_scene(s: TrainSetting, rules: SizeRules, mat: Material, estimator: Est
                         "ring_mesh": {"kind": ContactKind.names.get(int(c23.kind), str(c23.kind)), "active_pair": c23.k,
                                       "next_pair_gap_um": c23.next_gap * 1e3},
                         "sized_for_share": shares[i]})
-    sun_o = e3(off["sun"])
+    sun_o = _vec3(off["sun"])
     rigid["sun"] = RigidBody(ReferencePoint(tuple(float(x) for x in sun_o), (0.0, 0.0, 1.0)), abs(s.torque),
                              SUN_FREE[s.sun_axis])
     info = {"psi1_deg": math.degrees(s.psi1), "phi1_deg": math.degrees(s.psi1), "sun_axis": s.sun_axis,

@@ -9,6 +9,7 @@ refusal, bad input (exit 2, no files). make bench (``-m bench``, ~40 s a solve):
 
 import json
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -24,7 +25,7 @@ from pipelines.models.trains.geometry import TrainErrors, single_layout
 from pipelines.models.trains.model import build_train_model
 from pipelines.models.trains.run import solve_run
 
-from tests.support.shipped import CASES_DIR, shipped_table, write_case
+from tests.support.shipped import shipped_table, write_case
 
 CASE = "stress_train_small"
 SHARE_TOL = 0.03  # the target: FE planet shares within 0.03 of the train LTCA's
@@ -92,8 +93,6 @@ def test_separated_planet_refused(built):
     err = TrainErrors(pins=((0.0, 0.04), (0.0, 0.0), (0.0, 0.0)))
     run = solve_run(model, err, case.torque, [0.0])
     assert run.sun_share[0, 0] == 0.0
-    from dataclasses import replace
-
     with pytest.raises(InputError) as e:
         check_loaded(replace(tc, errors=err), run)
     assert e.value.field == "train.planet_errors"
