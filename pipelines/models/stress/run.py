@@ -113,7 +113,7 @@ class StressRun:
     """A solved stress case: its summary and the objects behind it, for reports and further analysis."""
 
     summary: dict  # JSON-ready record, written as summary.json (keys in the module docstring)
-    tca: object  # PairTCAResult (pair model) or TwinTE (twin model)
+    tca: object  # PairTCAResult (pair model), TwinTE (twin model) or the train LTCA at the position (TrainRun, train)
     scene: Scene  # the parts, interfaces and supports that were meshed
     mesh: HexMesh
     result: FEResult  # displacements, stresses, contact pressure
