@@ -28,10 +28,12 @@ run: install
 	@echo "        each design: $(OUT)/part1_compare/{new,conventional}/ (report.html, teeth_*.png, flank_*.png, ...)"
 	@echo "        TCA plots: $(OUT)/part1_sun_planet/te.png, contact_paths.png"
 
-# two workers, one test file each (module fixtures are built once): 4 min instead of 7 on 2 cores;
-# convergence studies (marker "bench") run with make bench
+# two workers, one test file each (module fixtures are built once), heaviest files first (tests/conftest.py), one
+# BLAS/MKL thread per worker (two workers on two cores: extra threads only spin); convergence studies (marker
+# "bench") run with make bench
 test: install
-	$(BIN)/python -m pytest -q -n 2 --dist loadfile -m "not bench"
+	OMP_NUM_THREADS=1 MKL_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 \
+		$(BIN)/python -m pytest -q -n 2 --dist loadfile --no-loadscope-reorder -m "not bench"
 
 bench: install
 	$(BIN)/python -m pytest -q -m bench

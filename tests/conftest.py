@@ -12,6 +12,33 @@ from tests.support import shipped as _shipped
 offscreen()
 
 
+# `make test` runs two workers, one test file each (-n 2 --dist loadfile --no-loadscope-reorder), in the order
+# collected: the heaviest files go first so that the run does not end with one worker alone on a long file.
+# Seconds per file from `pytest --durations=0` (2-core machine); a file not listed keeps its place after these.
+HEAVY_FILES = {
+    "tests/pipelines/report/test_compare.py": 100,
+    "tests/pipelines/sweep/test_sweep_stress.py": 80,
+    "tests/pipelines/models/stress/test_stress_neighbours.py": 80,
+    "tests/tca/planetary/test_regulation.py": 60,
+    "tests/pipelines/report/test_report_layout.py": 50,
+    "tests/test_examples.py": 50,
+    "tests/pipelines/models/stress/test_stress.py": 45,
+    "tests/pipelines/models/stress/test_headline.py": 40,
+    "tests/pipelines/models/ltca/test_ltca.py": 40,
+    "tests/pipelines/cli/test_sweep.py": 30,
+    "tests/pipelines/cli/test_cli_contract.py": 30,
+    "tests/tca/pair/test_tca.py": 30,
+    "tests/pipelines/analyses/test_tca_face.py": 25,
+    "tests/tca/pair/test_hard_cases.py": 25,
+    "tests/tca/planetary/test_subgear.py": 25,
+    "tests/pipelines/models/stress/test_loaded_sizing.py": 25,
+}
+
+
+def pytest_collection_modifyitems(session, config, items):
+    items.sort(key=lambda item: -HEAVY_FILES.get(item.nodeid.split("::")[0], 0))  # stable: files stay in order
+
+
 @pytest.fixture
 def shipped():
     """``shipped.data(name, {"mesh.refine": 0.3})``, ``shipped.table(...)``, ``shipped.write(folder, name, data)``."""
