@@ -5,6 +5,7 @@ train case (kind ``isostatic`` or ``planetary``, with its optional ``[ltca]`` ta
 
     task = "train_tolerance"
     base = "part3_ideal.toml"
+    set = { "train.sun_axis" = "fixed" }   # optional: keys of the base case set for this sweep
     [samples]
     count = 200               # samples (1 ... 100000)
     seed = 1                  # sample k is drawn from the generator seeded with (seed, k)
@@ -61,7 +62,7 @@ from pipelines.models.trains.geometry import TrainErrors
 from pipelines.models.trains.run import solve_run, train_positions
 
 __all__ = ["ToleranceBand", "ToleranceSweep", "SampleResult", "DISTRIBUTIONS", "MAX_SAMPLES", "read_tolerance_sweep",
-           "read_train_case", "sample_pins", "sample_errors", "tolerance_points", "sample_model", "run_sample",
+           "read_train_case", "set_keys", "sample_pins", "sample_errors", "tolerance_points", "sample_model", "run_sample",
            "solve_sample", "sample_scalars", "distribution", "tolerance_summary"]
 
 DISTRIBUTIONS = ("uniform", "normal")
@@ -132,13 +133,30 @@ def read_train_case(data: dict, where: str = "base"):
     return read_checked(t, kind, "ltca")
 
 
+def set_keys(data: dict, values: dict, where: str = "set") -> dict:
+    """A copy of a case's data with dotted keys set (a missing table is created; the case reader checks them)."""
+    data = copy.deepcopy(data)
+    for dotted, v in values.items():
+        cur = data
+        keys = dotted.split(".")
+        for k in keys[:-1]:
+            cur = cur.setdefault(k, {})
+            if not isinstance(cur, dict):
+                raise InputError(f"{where}.{dotted}", v, f"a key of the base case ({k!r} is a value, not a table)")
+        cur[keys[-1]] = v
+    return data
+
+
 def read_tolerance_sweep(t: Table, sweep_path: Path) -> ToleranceSweep:
-    """The ``base`` and ``[samples]`` of a ``task = "train_tolerance"`` sweep file (module docstring); the base
-    case fully read (bad input raises here, before any work)."""
+    """The ``base``, ``set`` and ``[samples]`` of a ``task = "train_tolerance"`` sweep file (module docstring); the
+    base case fully read (bad input raises here, before any work)."""
     from pipelines.cases.reader import load_case
 
     base = t.get("base", str)
     data = load_case((Path(sweep_path).parent / base).resolve()).data
+    if t.has("set"):
+        st = t.table("set")
+        data = set_keys(data, st.data)
     s = t.table("samples")
     count = s.get("count", int, lo=1, hi=MAX_SAMPLES)
     seed = s.get("seed", int, lo=0, hi=2 ** 63 - 1)

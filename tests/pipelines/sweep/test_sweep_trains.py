@@ -79,7 +79,7 @@ title = "small spur train 24/21/66"
 planets = "involute"
 [train]
 planets = 3
-sun_axis = "fixed"
+sun_axis = "floating"
 [run]
 carrier_revolutions = 1.0
 positions = 36
@@ -110,6 +110,7 @@ axial_size_mm = 2.5
 SWEEP = """
 task = "train_tolerance"
 base = "small.toml"
+set = {{ "train.sun_axis" = "fixed" }}
 [samples]
 count = {count}
 seed = 7
@@ -132,7 +133,7 @@ def test_sweep_cli_summary_resume_and_seed(tmp_path):
     out = tmp_path / "out"
     assert main(["sweep", _write(tmp_path, 3), "--out", str(out), "--workers", "0"]) == 0
     s = json.loads((out / "summary.json").read_text())
-    assert s["samples_ok"] == 3 and s["band_um"] == {"radial": 1.0, "tangential": 2.0} and s["seed"] == 7
+    assert s["sun_axis"] == "fixed" and s["samples_ok"] == 3 and s["band_um"] == {"radial": 1.0, "tangential": 2.0} and s["seed"] == 7
     assert set(s["k_gamma"]) == {"samples", "mean", "std", "min", "max", "p95"}
     assert s["k_gamma"]["min"] <= s["k_gamma"]["mean"] <= s["k_gamma"]["p95"] <= s["k_gamma"]["max"]
     assert (out / "k_gamma_distribution.png").stat().st_size > 0
