@@ -17,6 +17,10 @@ with an optional ``[ltca]`` table. Keys of ``[ltca]`` (all optional, every key c
 Isostatic cases: ``[train] sun_axis`` (floating or fixed), the planet pin errors (tangential, radial) and run-outs,
 the sun's run-out and centre error, the carrier's centre error; the carrier and the ring held (their axes fixed).
 Planetary cases: the installment errors of every shaft and the regulation are built into the meshes.
+
+Refused before any work (one line, exit 2): a pin error beyond the range of :mod:`pipelines.models.trains.depth`
+(a tip meets a root, or the planet leaves a mesh; checked by the isostatic reader), and flank models whose
+estimated memory exceeds ``GEARFE_MAX_MEMORY_GB`` (:mod:`pipelines.models.trains.plan`).
 """
 
 from __future__ import annotations
@@ -32,6 +36,7 @@ from pipelines.cases.schema import Table
 from pipelines.models.trains.case import TrainCase
 from pipelines.models.trains.geometry import TrainErrors
 from pipelines.models.trains.options import TrainOptions
+from pipelines.models.trains.plan import check_train_plan
 
 __all__ = ["read_isostatic_ltca", "read_planetary_ltca", "default_torque", "LINE_LOAD"]
 
@@ -103,6 +108,7 @@ def read_isostatic_ltca(case: Table) -> TrainCase:
         from dataclasses import replace
 
         opts = replace(opts, sun_axis="fixed")
+    check_train_plan(sun, planet, ring, opts)  # GEARFE_MAX_MEMORY_GB, before any work
     return TrainCase("isostatic", title, sun, planet, ring, n, errors, opts)
 
 
@@ -120,6 +126,7 @@ def read_planetary_ltca(case: Table) -> TrainCase:
     _check_assembly(train.sun, train.planet, train.ring, train.planets)
     opts = _read_ltca(lt, default_torque(train.sun, train.planets, 2), tca, regulation="tca")
     rating = read_rating(case.table("rating", required=False), train_names(train))  # rated at the run's torques
+    check_train_plan(train.sun, train.planet, train.ring, opts)  # GEARFE_MAX_MEMORY_GB, before any work
     return TrainCase("planetary", title, train.sun, train.planet, train.ring, train.planets, TrainErrors(), opts,
                      train, tuple(errors), reg, rating)
 

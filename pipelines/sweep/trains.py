@@ -58,6 +58,7 @@ from tca.errors import InputError
 
 from pipelines.cases.schema import Table
 from pipelines.models.trains.case import TrainCase
+from pipelines.models.trains.depth import check_pin_errors, depth_range
 from pipelines.models.trains.geometry import TrainErrors
 from pipelines.models.trains.run import solve_run, train_positions
 
@@ -166,6 +167,10 @@ def read_tolerance_sweep(t: Table, sweep_path: Path) -> ToleranceSweep:
     s.done()
     t.done()
     train = read_train_case(data)
+    own = np.zeros((train.planets, 2)) if not train.errors.pins else np.asarray(train.errors.pins, float)
+    rng = depth_range(train.sun, train.planet, train.ring)
+    for corner in ((1, 1), (1, -1), (-1, 1), (-1, -1)):  # the band's extremes on the base case's own errors
+        check_pin_errors(rng, own + band.half_widths * corner, lambda i: "samples.radial_um")
     return ToleranceSweep(base, data, train, band, count, seed)
 
 
