@@ -3,7 +3,8 @@
 ``gearfe sweep SWEEP.toml --out DIR [--scheduler ADDRESS]``. The sweep file names a base case and
 the axes of the grid (dotted keys of the base case and their values)::
 
-    task = "tca"                          # what each grid point runs: "tca" (gearfe tca) or "stress"
+    task = "tca"                          # what each grid point runs: "tca" (gearfe tca), "stress", or
+                                          # "train_tolerance" (below)
     base = "part1_sun_planet.toml"        # relative to the sweep file
     [[axes]]
     key = "misalignment.d_gamma_arcmin"
@@ -32,6 +33,14 @@ The positions are the innermost axis; a ``[positions]`` table alone (no ``[[axes
 ``DIR/te_loaded.png`` (unloaded TCA TE and loaded TE = TCA TE + FE elastic rotation of the driven
 body, vs φ1) and ``DIR/load_share.png`` (share of the contact force of each modelled tooth pair vs
 φ1), one curve per combination of the other axes.
+
+Tolerance studies of a train (``task = "train_tolerance"``, :mod:`pipelines.sweep.trains`): a train case (kind
+``isostatic`` or ``planetary``) as ``base``, an optional ``set = { "train.sun_axis" = "fixed" }`` of its keys, and a
+``[samples]`` table (``count``, ``seed``, ``tangential_um``, ``radial_um``, ``distribution``) instead of axes: each
+point is one seeded random sample of every planet's pin errors from the band, solved by the train's loaded TCA
+with the model built once per worker; ``DIR/summary.json`` carries the K_γ distribution (``k_gamma``: samples,
+mean, std, min, max, p95; ``k_gamma_members`` for twins) and ``DIR/k_gamma_distribution.png`` its histogram and
+CDF. Example: ``pipelines/cases/sweep_part3_pin_errors.toml``; docs/trains.md, "Tolerance studies".
 
 Every grid point is validated before anything runs, and grid points are distinct cases (a value listed twice
 in an axis, or two combinations of the axes giving the same case, are refused: they would share a folder) (a bad key or value: exit status 2, no files,

@@ -10,8 +10,9 @@ The train's peak is bounded by
 .. math:: M_\text{train} = M_0 + \max_k M_k + \sum_k 8 m_k^2                                       \qquad (P3)
 
 with :math:`M_0` = 0.3 GB for the process itself (interpreter, libraries, the meshes' TCAs and slices): the peak
-resident memory measured for the shipped trains at default grids, 0.81 GB (``part3_indexing``) and 1.07 GB
-(``part1_twin_dgamma``), was 0.29 GB and 0.19 GB above :math:`\max_k M_k + \sum_k 8 m_k^2` (0.52 and 0.88 GB).
+resident memory measured for the shipped trains at default grids, 0.81 GB (``part3_indexing``), 1.07 GB
+(``part1_planetary_regulation``) and 1.14 GB (``part1_twin_dgamma``), was 0.29, 0.19 and 0.26 GB above
+:math:`\max_k M_k + \sum_k 8 m_k^2` (0.52, 0.88 and 0.88 GB).
 
 checked against ``GEARFE_MAX_MEMORY_GB`` (:func:`pipelines.models.stress.model.memory_limit_gb`) when the case is
 read, before any work: a plan above the limit is bad input naming the grid key that made it large (the finer of

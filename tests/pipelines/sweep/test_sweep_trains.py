@@ -155,6 +155,7 @@ def test_sweep_cli_summary_resume_and_seed(tmp_path):
 
 
 @pytest.mark.parametrize("edit, key", [("radial_um = 1.0", "radial_um = 5000.0"),
+                                       ("radial_um = 1.0", "radial_um = 600.0"),  # tips on roots beyond 500 um (m = 2)
                                        ("seed = 7", "seed = -1"),
                                        ("count = {count}", "count = 0"),
                                        ("tangential_um = 2.0", "tangential_um = 2.0\nshape = 'box'")])
