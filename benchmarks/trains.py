@@ -92,6 +92,7 @@ def speed(name: str, per_cycle: int, grid: dict, say=print) -> dict:
     t0 = time.perf_counter()
     layout, _ = train_layout(c)
     m = build_train_model(layout, c.opts)
+    m.build_phases()  # one-off: the slices of every mesh phase (the run's positions reuse them)
     t_build = time.perf_counter() - t0
     psi = train_positions(m)
     T = c.opts.torques[0]

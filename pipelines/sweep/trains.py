@@ -237,6 +237,7 @@ def sample_model(data: dict):
     case = read_train_case(data)
     layout, _ = train_layout(case)
     model = build_train_model(layout, case.opts)
+    model.build_phases()
     _MODELS.clear()
     _MODELS[key] = (case, model)
     return case, model, time.perf_counter() - t0
