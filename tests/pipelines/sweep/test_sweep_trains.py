@@ -166,3 +166,20 @@ def test_bad_tolerance_sweep_exits_2_without_files(tmp_path, capsys, edit, key):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "samples." in err[0]
     assert not out.exists()
+
+
+def test_shipped_example_reads_200_samples_in_its_band():
+    """pipelines/cases/sweep_part3_pin_errors.toml: the Part 3 train with the sun held, 200 samples of +-10 um (read
+    and sampled, not solved: the 200-sample run is in make bench, benchmarks/trains.py --only tolerance)."""
+    from pipelines.cases.reader import CASES_DIR, load_case
+    from pipelines.sweep.trains import read_tolerance_sweep, tolerance_points
+
+    path = CASES_DIR / "sweep_part3_pin_errors.toml"
+    t = load_case(path)
+    assert t.get("task", str) == "train_tolerance"  # read by gearfe sweep before the samples
+    sw = read_tolerance_sweep(t, path)
+    assert sw.count == 200 and sw.train.opts.sun_axis == "fixed" and sw.train.planets == 3
+    points, keys = tolerance_points(sw)
+    pins = np.array([p["sample"]["pins_mm"] for p in points])
+    assert len({p["id"] for p in points}) == 200 and keys[0] == "sample"
+    assert np.abs(pins).max() <= 10e-3 and np.abs(pins).max() > 9.5e-3
