@@ -36,7 +36,7 @@ from pipelines.models.stress.model import FESettings
 from pipelines.models.stress.scene import PHASES
 from pipelines.models.stress.sizing import SIZING, SizeRules
 
-__all__ = ["read_stress_case", "read_unloaded_pair", "read_torque", "torque_record", "check_unit_load", "UNIT_LOAD_MAX_MPA", "TORQUE_KEYS"]
+__all__ = ["read_stress_case", "read_train_stress", "read_unloaded_pair", "read_torque", "torque_record", "check_unit_load", "UNIT_LOAD_MAX_MPA", "TORQUE_KEYS"]
 
 UNIT_LOAD_MAX_MPA = 1500.0  # largest nominal unit load F_t / (b m_n) of a stress case (S2)
 TORQUE_KEYS = ("driven_torque_nm", "torque_nm", "driver_torque_nm")
@@ -63,6 +63,8 @@ def torque_record(case: StressCase) -> dict:
     """The torques of a stress case with the gears they belong to, for every summary: the driven gear's (the ring's
     in a twin case) and, for a pair, the driver's (S1), with the pair checks' findings (``pair_geometry``: the centre
     distance and where it comes from, backlash, clearances, contact ratios, :func:`tca.pair.checks.check_pair`)."""
+    if case.model == "train":  # the train LTCA's convention: the torque acts on the sun
+        return {"torque_gear": case.train_case.sun.name, "sun_torque_nm": case.torque * 1e-3}
     if case.model != "pair":
         return {"torque_gear": case.train.ring.name, "driven_torque_nm": case.torque * 1e-3}
     g1, g2 = case.pair.gear1, case.pair.gear2
@@ -189,7 +191,9 @@ def read_stress_case(case: Table, ltca: bool = True) -> StressCase:
     """A :class:`StressCase` from a case table (module docstring); every key is checked, unknown keys rejected.
     ``ltca``: an ``[ltca]`` table (one file per pair) is checked too, and left unused (gearfe ltca reads it itself)."""
     kind = case.get("kind", str, "stress", choices=("stress", "pair"))
-    model = case.get("model", str, "pair", choices=("pair",)) if kind == "pair" else case.get("model", str, choices=MODELS)
+    # model 'train' is read from an isostatic train case (read_train_stress), the file gearfe ltca takes
+    model = (case.get("model", str, "pair", choices=("pair",)) if kind == "pair"
+             else case.get("model", str, choices=tuple(m for m in MODELS if m != "train")))
     title = case.get("title", str, "")
     tkey, tval = read_torque(case)
     if model == "twin" and tkey == "driver_torque_nm":
@@ -230,5 +234,43 @@ def read_stress_case(case: Table, ltca: bool = True) -> StressCase:
     out = with_rating(case, out)  # [rating]: ISO 6336 (pipelines.cases.rating)
     if ltca and case.has("ltca"):
         read_ltca_options(case.table("ltca"), out.torque)
+    case.done()
+    return out
+
+
+def read_train_stress(case: Table) -> StressCase:
+    """A stress case of ``model = "train"`` from an isostatic train case (``kind = "isostatic"``, the file
+    ``gearfe ltca`` takes; :func:`pipelines.cases.trains.read_isostatic_ltca` reads and checks its train, errors and
+    ``[ltca]`` tables): the FE of the whole train at one position of the train LTCA's run, loaded by the first of
+    ``[ltca] torques_nm`` on the sun (the LTCA's conventions: ring held, carrier output). Its own keys::
+
+        [stress]
+        position = 0            # index j of the LTCA's positions: psi1 = 2 pi j / (positions_per_cycle N1)
+        psi1_deg = 0.0          # or the sun's angle relative to the carrier [deg] (not both)
+        [mesh] ...              # as a stress case (refine, teeth, sizes, sizing)
+        [fe] ...
+
+    The FE's pins and the sun's support are rigid: ``[ltca] pin_stiffness_n_per_um`` and ``sun_support_n_per_um``
+    are refused here (the sun is held on its axis or floats, ``[train] sun_axis``)."""
+    from pipelines.cases.trains import read_isostatic_ltca
+
+    case.get("kind", str, choices=("isostatic",))
+    mesh = _read_mesh(case.table("mesh", required=False))
+    fe = _read_fe(case.table("fe", required=False))
+    st = case.table("stress", required=False)
+    position, psi1 = 0, None
+    if st is not None:
+        if st.has("position") and st.has("psi1_deg"):
+            raise InputError("stress.psi1_deg", st.data["psi1_deg"], "left out when stress.position is given (one of them)")
+        position = st.get("position", int, 0, lo=0, hi=100000)
+        if st.has("psi1_deg"):
+            psi1 = math.radians(st.get("psi1_deg", float, lo=-3600.0, hi=3600.0))
+        st.done()
+    tc = read_isostatic_ltca(case)
+    for key, v in (("ltca.pin_stiffness_n_per_um", tc.opts.pin_stiffness), ("ltca.sun_support_n_per_um", tc.opts.sun_support)):
+        if v is not None:
+            raise InputError(key, v * 1e-3, "left out for gearfe stress (the FE's planet pins and sun support are rigid)")
+    torque = tc.opts.torques[0]
+    out = StressCase("train", torque, tc.title, position=position, phi1=psi1, mesh=mesh, fe=fe, train_case=tc)
     case.done()
     return out

@@ -18,7 +18,7 @@ from pipelines.models.stress.sizing import SizeRules
 
 __all__ = ["StressCase", "MODELS", "REGULATION"]
 
-MODELS = ("pair", "twin")
+MODELS = ("pair", "twin", "train")
 
 
 REGULATION = ("tca", "none", "given")
@@ -29,7 +29,7 @@ class StressCase:
     """A stress load case: model, gears, position, torque [N mm], mesh rules and FE settings."""
 
     model: str
-    torque: float  # [N mm] magnitude, on the driven gear (pair) or the ring (twin)
+    torque: float  # [N mm] magnitude, on the driven gear (pair), the ring (twin) or the sun (train)
     title: str = ""
     pair: GearPair | None = None
     train: DoubleHelicalTrain | None = None
@@ -46,6 +46,7 @@ class StressCase:
     mesh: SizeRules = field(default_factory=SizeRules)
     fe: FESettings = field(default_factory=FESettings)
     rating: object = None  # pipelines.cases.rating.RatingSpec of the case's [rating] table; None: not rated
+    train_case: object = None  # pipelines.models.trains.case.TrainCase of a 'train' model (an isostatic train case)
 
     def __post_init__(self):
         if self.model not in MODELS:
@@ -56,6 +57,12 @@ class StressCase:
             raise InputError("model", self.model, "a gear pair (driver, driven) for model 'pair'")
         if self.model == "twin" and (self.train is None or self.pair is not None):
             raise InputError("model", self.model, "a planetary train (sun, planet, ring) for model 'twin'")
+        if self.model == "train" and (self.train_case is None or self.pair is not None or self.train is not None):
+            raise InputError("model", self.model, "an isostatic train case (sun, planets, ring) for model 'train'")
+        if self.model == "train" and not (isinstance(self.position, int) and not isinstance(self.position, bool)
+                                          and self.position >= 0):
+            raise InputError("stress.position", self.position, "an integer >= 0: the index of a position of the train "
+                             "LTCA's run")
         if self.regulation not in REGULATION:
             raise InputError("regulation.mode", self.regulation, "one of " + ", ".join(repr(m) for m in REGULATION))
         if not self.member_phase:

@@ -263,7 +263,7 @@ def fe_model(scene: Scene, fe: FESettings, search_gap: float | None = None) -> F
             bodies.append(Body(b, (Fixed(f"{b}/rim"),), mat))
         else:
             torque = scene.rigid[b].torque
-            bodies.append(Body(b, (Rigid(f"{b}/rim", b, free=("rz",), torque=torque),), mat))
+            bodies.append(Body(b, (Rigid(f"{b}/rim", b, free=scene.rigid[b].free, torque=torque),), mat))
     contacts = []
     for itf in scene.interfaces:
         for q, j1, j2 in itf.tooth_pairs():

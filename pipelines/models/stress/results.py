@@ -170,6 +170,13 @@ def kinematic_ratio(scene: Scene, interfaces: dict) -> float:
     """Reaction / applied torque predicted by the TCA's instantaneous ratios and the FE load distribution."""
     if scene.model == "pair":
         return _mesh_ratio(scene.interfaces[0], interfaces)
+    if scene.model == "train":  # carrier held: planet i passes its sun torque to the ring times 1 / (rho12 rho23)
+        sun = [i for i in scene.interfaces if i.name == "sun-planet"]
+        ring = {i.member: i for i in scene.interfaces if i.name == "planet-ring"}
+        w = np.array([interfaces["sun-planet"]["members"][i.member]["force_n"] * abs(i.contact.arms[0]) for i in sun])
+        w = w / w.sum()
+        return float(sum(wi / (_mesh_ratio(i, interfaces) * _mesh_ratio(ring[i.member], interfaces))
+                         for i, wi in zip(sun, w)))
 
     def weights(name, arm):
         itfs = [i for i in scene.interfaces if i.name == name]

@@ -21,8 +21,12 @@ Models (:mod:`pipelines.models.stress.scene`): ``pair`` — a gear pair at a TCA
 its rim (Fig. 1.7's sun), driven gear rigid with its rotation free and the torque ``torque_nm``
 against its sense of rotation; ``twin`` — Part 1's twin subgear drive (sun fixed, twin planet
 rigid with only its rotation free, ring rigid with the torque T), positioned by the Part 1 TCA with
-the shaft errors and the axial regulation ΔZ of members a and b. Stress recovery, load share and
-edge contact: :mod:`pipelines.models.stress.results`.
+the shaft errors and the axial regulation ΔZ of members a and b; ``train`` — the whole planetary train of an
+isostatic train case (``kind = "isostatic"``, the file ``gearfe ltca`` takes, read by
+:func:`pipelines.cases.stress.read_train_stress`) at one position of the train LTCA's run
+(:mod:`pipelines.models.stress.train_scene`: torque on the sun, ring held, carrier the frame), with the summary's
+``train`` record of the planets' shares of the FE beside the LTCA's (:mod:`pipelines.models.stress.train_results`).
+Stress recovery, load share and edge contact: :mod:`pipelines.models.stress.results`.
 
 Case file (TOML, ``kind = "stress"``)::
 
@@ -97,6 +101,8 @@ from pipelines.models.stress.loaded import EstimateGrid, Estimator
 from pipelines.models.stress.model import ELEMENTS, check_resources, mesh_scene, solve_scene
 from pipelines.models.stress.results import member_teeth, summarize
 from pipelines.models.stress.scene import Scene, TwinSetting, pair_scene, twin_scene
+from pipelines.models.stress.train_results import check_loaded, ltca_at, train_psi1, train_record
+from pipelines.models.stress.train_scene import TrainSetting, train_scene
 from pipelines.models.stress.zones import ZONE_SHARE
 
 __all__ = ["StressRun", "run_stress", "build_scene", "estimator", "unzoned_loads"]
@@ -107,7 +113,7 @@ class StressRun:
     """A solved stress case: its summary and the objects behind it, for reports and further analysis."""
 
     summary: dict  # JSON-ready record, written as summary.json (keys in the module docstring)
-    tca: object  # PairTCAResult (pair model) or TwinTE (twin model)
+    tca: object  # PairTCAResult (pair model), TwinTE (twin model) or the train LTCA at the position (TrainRun, train)
     scene: Scene  # the parts, interfaces and supports that were meshed
     mesh: HexMesh
     result: FEResult  # displacements, stresses, contact pressure
@@ -156,6 +162,8 @@ def _build(case: StressCase, progress=None, forced: dict | None = None):
         rec = {"te_peak_to_peak_arcsec": r.te_peak_to_peak_arcsec, "edge_contact": r.edge_contact,
                "elapsed_s": r.elapsed}
         return scene, rec, r
+    if case.model == "train":
+        return _build_train(case, est, progress)
     cache: dict = {}
     dz, reg = _regulation(case, cache, progress)
     tw = twin_te(case.train, 0, case.errors, dz, case.tca, cache)
@@ -170,6 +178,25 @@ def _build(case: StressCase, progress=None, forced: dict | None = None):
            "phi1_grid_deg": [math.degrees(grid[0]), math.degrees(grid[-1])], "regulation": reg,
            "member_te_max_arcsec": {k: float(tw.members[k].te3.max() / ARCSEC) for k in ("a", "b")}}
     return scene, rec, tw
+
+
+def _build_train(case: StressCase, est: Estimator | None, progress=None):
+    """The train model's scene at its position, after the train LTCA there (the planets' loads for the sizes, and the
+    check that every planet carries load: :func:`pipelines.models.stress.train_results.check_loaded`)."""
+    tc = case.train_case
+    psi1 = train_psi1(tc, case.position) if case.phi1 is None else case.phi1
+    t0 = time.perf_counter()
+    ltca = ltca_at(tc, psi1, case.torque)
+    check_loaded(tc, ltca)  # a planet without load would be a free body: refused before meshing
+    if progress is not None:
+        progress(f"tca: train LTCA at psi1 = {math.degrees(psi1):.4f} deg in {time.perf_counter() - t0:.1f} s, planet shares "
+                 + ", ".join(f"{x:.4f}" for x in ltca.sun_share[0]))
+    setting = TrainSetting(tc.sun, tc.planet, tc.ring, tc.planets, tc.errors, tc.opts.sun_axis, case.torque, psi1,
+                           case.tca, tuple(float(x) for x in ltca.sun_share[0]))
+    scene = train_scene(setting, case.mesh, case.fe.material, est)
+    rec = {"ltca_s": time.perf_counter() - t0, "ltca_sun_shares": [float(x) for x in ltca.sun_share[0]],
+           "ltca_k_gamma_position": float(tc.planets * ltca.sun_share[0].max())}
+    return scene, rec, ltca
 
 
 def _warnings(scene, approach: float, interfaces: dict) -> list[str]:
@@ -320,6 +347,10 @@ def run_stress(case: StressCase, out: Path, progress=None) -> StressRun:
         found, remeshed = unzoned_loads(scene, s["interfaces"]), first
         pos = scene.info
     pos = {**pos, "remeshed": remeshed}
+    if case.model == "train":  # the planets' shares of the FE beside the LTCA's (train_results)
+        s["train"] = train_record(scene, mesh, model, r, tca_obj, s["interfaces"])
+        say("results: planet shares FE " + ", ".join(f"{p['sun_share']:.4f}" for p in s["train"]["planets"])
+            + " / LTCA " + ", ".join(f"{p['ltca_sun_share']:.4f}" for p in s["train"]["planets"]))
     out.mkdir(parents=True, exist_ok=True)
     r.write_vtu(out / "result.vtu")
     t_res = time.perf_counter() - t1

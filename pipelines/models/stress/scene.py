@@ -100,7 +100,7 @@ from pipelines.models.stress.sizing import (ContactSizes, HertzContact, SizeRule
 from pipelines.models.stress.zones import ZONE_SHARE, Zone, pair_zone
 
 __all__ = ["MeshContact", "mesh_contact", "contact_length", "Part", "Interface", "RigidBody", "Reaction",
-           "Scene", "Placing", "TwinSetting", "pair_scene", "twin_scene", "PHASES"]
+           "Scene", "Placing", "TwinSetting", "pair_scene", "twin_scene", "PHASES", "mesh_interface"]
 
 _SIDE = {1: "pos", -1: "neg"}
 
@@ -155,10 +155,12 @@ class Interface:
 
 
 class RigidBody(NamedTuple):
-    """A body held rigid on its rim by a reference node on its axis, only the rotation about it free."""
+    """A body held rigid on its rim by a reference node on its axis, the rotation about it free (and, for a floating
+    train sun, its translations ``ux``, ``uy``)."""
 
     ref: ReferencePoint
     torque: float  # applied about the reference axis [N mm]
+    free: tuple = ("rz",)  # the free DOFs of the reference node (fem.Rigid)
 
 
 class Reaction(NamedTuple):
@@ -205,7 +207,7 @@ class Placing:
     inclined_lines: bool = False  # size a helical line contact as a line whatever its TCA kind (sizing.contact_sizes)
 
 
-def _interface(at: Placing, pair: GearPair, c: MeshContact, torque: float, rules: SizeRules, mat: Material,
+def mesh_interface(at: Placing, pair: GearPair, c: MeshContact, torque: float, rules: SizeRules, mat: Material,
                load: MeshLoad | None = None, forced: tuple = ()) -> Interface:
     """Driver and driven parts of one mesh at its contact (placed by mesher.placement), sized by the loaded estimate
     ``load`` of the mesh (:func:`_loaded_parts`) or, without it, by Hertz's contact of the whole load at the TCA point."""
@@ -385,7 +387,7 @@ def pair_scene(pair: GearPair, result: PairTCAResult, phi1: float, torque: float
             load = estimator.load(pair, lines, torque)
         except GearfeError as exc:  # the unloaded TCA's sizes, and the summary says why
             failed = str(exc)
-    itf = _interface(at, pair, c, torque, rules, mat, load, estimator.forced.get((at.name, at.member), ()) if estimator else ())
+    itf = mesh_interface(at, pair, c, torque, rules, mat, load, estimator.forced.get((at.name, at.member), ()) if estimator else ())
     reach = rules.reach(_load(pair, c, torque), min(g1.face_width, g2.face_width))
     near = []
     if load is None:
@@ -538,10 +540,10 @@ def twin_scene(train: DoubleHelicalTrain, subs: dict, setting: TwinSetting, phi1
         c_nom = np.array([E_c * math.cos(th), E_c * math.sin(th), zk])
         F2 = Pose(A2.T, c_nom)
         forced = estimator.forced if estimator is not None else {}
-        s_itf = _interface(Placing("sun-planet", k, ("sun", "planet"), (k, f"{k}_sun"), "driven", F1), p1, c12, T_planet,
+        s_itf = mesh_interface(Placing("sun-planet", k, ("sun", "planet"), (k, f"{k}_sun"), "driven", F1), p1, c12, T_planet,
                            rules, mat, loads.get(("sun-planet", k)), forced.get(("sun-planet", k), ()))
         # the ring turns with the member that leads: the other member keeps its backlash at the ring
-        r_itf = _interface(Placing("planet-ring", k, ("planet", "ring"), (f"{k}_ring", k), "driver", F2), p2,
+        r_itf = mesh_interface(Placing("planet-ring", k, ("planet", "ring"), (f"{k}_ring", k), "driver", F2), p2,
                            replace(c23, phi2=phi3_lead), abs(torque), rules, mat, loads.get(("planet-ring", k)),
                            forced.get(("planet-ring", k), ()))
         itfs += [s_itf, r_itf]
