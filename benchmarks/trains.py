@@ -11,6 +11,11 @@
 2. Speed: the Part 1 train (five twin shafts, 20 meshes) and the Part 3 train over one carrier revolution at
    ``--per-cycle`` positions per mesh cycle (default 10: 1,090 and 1,510 positions); build, solve, cost of a
    further position and a further torque.
+3. Tolerance (``--only tolerance``): ``gearfe sweep`` (``task = "train_tolerance"``, a local Dask cluster of
+   ``--workers`` processes) of ``--samples`` random samples of the planets' pin errors (tangential and radial,
+   uniform within +-10 um, seed 1) for the Part 3 train with the sun held (the shipped
+   ``sweep_part3_pin_errors.toml``) and for the Part 1 twin train (``part1_twin_dgamma.toml``): the K_γ
+   distribution and the wall time (the models built once per worker).
 
 Writes ``<out>/trains.md`` and ``summary.json``.
 """
@@ -87,6 +92,7 @@ def speed(name: str, per_cycle: int, grid: dict, say=print) -> dict:
     t0 = time.perf_counter()
     layout, _ = train_layout(c)
     m = build_train_model(layout, c.opts)
+    m.build_phases()  # one-off: the slices of every mesh phase (the run's positions reuse them)
     t_build = time.perf_counter() - t0
     psi = train_positions(m)
     T = c.opts.torques[0]
@@ -106,12 +112,54 @@ def speed(name: str, per_cycle: int, grid: dict, say=print) -> dict:
     return out
 
 
+PART1_TOLERANCE = """task = "train_tolerance"
+base = "{base}"
+[samples]
+count = {samples}
+seed = 1
+tangential_um = 10.0
+radial_um = 10.0
+"""
+
+
+def tolerance(out: Path, samples: int, workers: int, say=print) -> dict:
+    """Tolerance sweeps of the Part 3 train (sun held) and the Part 1 twin train, ``samples`` each, on a local Dask
+    cluster: K_γ distribution, wall time, model builds."""
+    from pipelines.cli import main as gearfe
+
+    res = {}
+    p3 = (CASES_DIR / "sweep_part3_pin_errors.toml").read_text().replace("count = 200", f"count = {samples}")
+    p3 = p3.replace('base = "part3_ideal.toml"', f'base = "{CASES_DIR / "part3_ideal.toml"}"')
+    files = {"part3_held": p3,
+             "part1_twin": PART1_TOLERANCE.format(base=CASES_DIR / "part1_twin_dgamma.toml", samples=samples)}
+    for name, text in files.items():
+        folder = out / f"tolerance_{name}"
+        if folder.exists():  # a fresh run: the time of every sample, none resumed
+            import shutil
+
+            shutil.rmtree(folder)
+        sweep = out / f"tolerance_{name}.toml"
+        sweep.write_text(text)
+        t0 = time.perf_counter()
+        rc = gearfe(["sweep", str(sweep), "--out", str(folder), "--workers", str(workers)])
+        wall = time.perf_counter() - t0
+        s = json.loads((folder / "summary.json").read_text())
+        res[name] = {"exit": rc, "wall_s": wall, "samples": s["samples_ok"], "k_gamma": s.get("k_gamma"),
+                     "k_gamma_members": s.get("k_gamma_members"), "timing": s.get("timing"),
+                     "positions_per_sample": s.get("positions_per_sample")}
+        say(f"tolerance {name}: {s['samples_ok']} samples in {wall:.1f} s on {workers} workers, K_gamma "
+            f"{json.dumps(s.get('k_gamma'))}")
+    return res
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--out", default="out/bench/trains")
     ap.add_argument("--per-cycle", type=int, default=10)
     ap.add_argument("--quick", action="store_true", help="coarse flank grids, 4 positions per cycle")
-    ap.add_argument("--only", choices=("findings", "speed"), default=None)
+    ap.add_argument("--only", choices=("findings", "speed", "tolerance"), default=None)
+    ap.add_argument("--samples", type=int, default=200, help="samples of each tolerance sweep")
+    ap.add_argument("--workers", type=int, default=2, help="local Dask workers of the tolerance sweeps")
     ap.add_argument("--train", choices=("part1", "part3"), default=None, help="speed of one train only")
     a = ap.parse_args(argv)
     out = Path(a.out)
@@ -119,7 +167,7 @@ def main(argv=None) -> int:
     g1 = {"profile_size_mm": 0.6, "axial_size_mm": 2.0, "slice_mm": 1.0} if a.quick else {}
     g3 = {"profile_size_mm": 1.2, "axial_size_mm": 4.0, "slice_mm": 2.0} if a.quick else {}
     P = 4 if a.quick else a.per_cycle
-    res = {"findings": {}, "speed": {}}
+    res = {"findings": {}, "speed": {}, "tolerance": {}}
     if a.only in (None, "findings"):
         f = res["findings"]
         f["part1"] = [finding("part1_planetary_regulation", {**g1, **_span("part1_planetary_regulation", P),
@@ -134,6 +182,8 @@ def main(argv=None) -> int:
             res["speed"]["part1"] = speed("part1_planetary_regulation", a.per_cycle, g1)
         if a.train in (None, "part3"):
             res["speed"]["part3"] = speed("part3_indexing", a.per_cycle, g3)
+    if a.only in (None, "tolerance"):
+        res["tolerance"] = tolerance(out, a.samples, a.workers)
     (out / "summary.json").write_text(json.dumps(plain(res), indent=2) + "\n")
     (out / "trains.md").write_text(_markdown(res))
     return 0
@@ -153,6 +203,8 @@ def _markdown(res: dict) -> str:
                              f"{min(sh):.4f} | {max(sh):.4f} |")
     for k, s in res["speed"].items():
         lines += ["", f"speed {k}: " + json.dumps(plain({x: s[x] for x in s if x != 'build'}))]
+    for k, s in res.get("tolerance", {}).items():
+        lines += ["", f"tolerance {k}: " + json.dumps(plain(s))]
     return "\n".join(lines) + "\n"
 
 

@@ -16,6 +16,7 @@ from tca.isostatic.train import IsostaticTrain, PlanetPlacement
 from pipelines.cases.planetary import check_train_meshes
 from pipelines.cases.reader import read_gears
 from pipelines.cases.schema import Table
+from pipelines.models.trains.depth import check_pin_errors, depth_range
 
 __all__ = ["read_train", "read_run", "read_solver"]
 
@@ -65,12 +66,12 @@ def read_train(case: Table) -> IsostaticTrain:
     centres = {k: _vec_um(t, f"{k}_center_error_um") for k in ("sun", "carrier", "ring")}
     placements = [PlanetPlacement() for _ in range(n)]
     planets = [planet] * n
-    seen = set()
+    seen = {}
     for e in t.tables("planet_errors", required=False):
         i = e.get("planet", int, lo=1, hi=n)
-        if i in seen:
+        if i - 1 in seen:
             raise InputError(f"{e.path}.planet", i, "each planet at most once")
-        seen.add(i)
+        seen[i - 1] = e.path
         placements[i - 1] = PlanetPlacement(e.get("tangential_um", float, 0.0, lo=-1000, hi=1000) * 1e-3,
                                             e.get("radial_um", float, 0.0, lo=-1000, hi=1000) * 1e-3)
         ro = e.get("runout_um", float, 0.0, lo=0.0, hi=1000.0) * 1e-3
@@ -80,6 +81,8 @@ def read_train(case: Table) -> IsostaticTrain:
         e.done()
     t.done()
     check_train_meshes(sun, planet, ring, sun.r_p + planet.r_p, gears)
+    check_pin_errors(depth_range(sun, planet, ring), [(p.radial, p.tangential) for p in placements],
+                     lambda i: f"{seen[i]}.radial_um")  # the planet's tips clear its mates' roots (one line, the key)
     return IsostaticTrain(sun, tuple(planets), ring, constraints=cons, placements=tuple(placements),
                           sun_center=centres["sun"], carrier_center=centres["carrier"], ring_center=centres["ring"])
 

@@ -14,13 +14,21 @@ with an optional ``[ltca]`` table. Keys of ``[ltca]`` (all optional, every key c
     pin_stiffness_n_per_um = 300.0  # elastic planet pins (default rigid)
     regulation = "tca"            # planetary: axial regulation "none", "first_order" (dZ^(1)) or "tca" (dZ^(2))
 
-Isostatic cases: ``[train] sun_axis`` (floating or fixed), the planet pin errors (tangential, radial) and run-outs,
+Isostatic cases may be helical (``helix_deg``, ``hand``, optional ``reference_helix_deg`` in the gear tables, normal
+module; the planet of the opposite hand to the sun, the ring of the planet's; involute planets): the loaded TCA
+builds helical meshes, while the unloaded Part 3 TCA (``gearfe tca``) stays planar and refuses them.
+``[train] sun_axis`` (floating or fixed), the planet pin errors (tangential, radial) and run-outs,
 the sun's run-out and centre error, the carrier's centre error; the carrier and the ring held (their axes fixed).
 Planetary cases: the installment errors of every shaft and the regulation are built into the meshes.
+
+Refused before any work (one line, exit 2): a pin error beyond the range of :mod:`pipelines.models.trains.depth`
+(a tip meets a root, or the planet leaves a mesh; checked by the isostatic reader), and flank models whose
+estimated memory exceeds ``GEARFE_MAX_MEMORY_GB`` (:mod:`pipelines.models.trains.plan`).
 """
 
 from __future__ import annotations
 
+import copy
 import math
 
 from tca.errors import InputError
@@ -32,6 +40,7 @@ from pipelines.cases.schema import Table
 from pipelines.models.trains.case import TrainCase
 from pipelines.models.trains.geometry import TrainErrors
 from pipelines.models.trains.options import TrainOptions
+from pipelines.models.trains.plan import check_train_plan
 
 __all__ = ["read_isostatic_ltca", "read_planetary_ltca", "default_torque", "LINE_LOAD"]
 
@@ -77,6 +86,7 @@ def read_isostatic_ltca(case: Table) -> TrainCase:
 
     lt = case.table("ltca", required=False)
     title = case.get("title", str, "")
+    helical = _take_helix(case)  # the Part 3 train and its unloaded TCA are planar: read as spur, then helical
     train = read_train(case)
     read_run(case, train)  # the unloaded run's keys are checked (the loaded run has its own positions)
     read_solver(case)
@@ -87,6 +97,8 @@ def read_isostatic_ltca(case: Table) -> TrainCase:
     sun, ring = train.sun, train.ring
     planet = train.planets[0]
     n = train.n_planets
+    if helical is not None:
+        sun, planet, ring = _helical_gears(case, helical, train)
     _check_assembly(sun, planet, ring, n)
     rv = [tuple(float(v) for v in g.tooth_transform(0)[1][:2]) for g in train.planets]
     errors = TrainErrors(pins=tuple((p.radial, p.tangential) for p in train.placements), planet_runout=tuple(rv),
@@ -103,7 +115,52 @@ def read_isostatic_ltca(case: Table) -> TrainCase:
         from dataclasses import replace
 
         opts = replace(opts, sun_axis="fixed")
+    check_train_plan(sun, planet, ring, opts)  # GEARFE_MAX_MEMORY_GB, before any work
     return TrainCase("isostatic", title, sun, planet, ring, n, errors, opts)
+
+
+HELIX_KEYS = ("helix_deg", "reference_helix_deg", "hand")
+
+
+def _take_helix(case: Table) -> dict | None:
+    """The gear tables as written when one has a helix key (which are then taken out of the case for the planar
+    Part 3 reader), else None."""
+    g = case.data.get("gears")
+    if not isinstance(g, dict) or not any(isinstance(v, dict) and any(k in v for k in HELIX_KEYS) for v in g.values()):
+        return None
+    full = copy.deepcopy(g)
+    for v in g.values():
+        if isinstance(v, dict):
+            for k in HELIX_KEYS:
+                v.pop(k, None)
+    return full
+
+
+def _helical_gears(case: Table, tables: dict, train) -> tuple:
+    """Sun, planet and ring read with their helix keys (a user's helical single-member train): the planet of the
+    opposite hand to the sun, the ring of the planet's; the meshes' pair checks and the pin error range redone on
+    the helical gears."""
+    from pipelines.cases.planetary import check_train_meshes
+    from pipelines.cases.reader import read_gears
+    from pipelines.models.trains.depth import check_pin_errors, depth_range
+
+    if case.data.get("planets", "involute") != "involute":
+        raise InputError("planets", case.data["planets"], "'involute' for a helical train (the double crowning of "
+                         "Part 3 is planar)")
+    g = read_gears(Table({"gears": tables}, ""))
+    sun, planet, ring = g["sun"], g["planet"], g["ring"]
+    hand = {1: "right", -1: "left"}
+    if planet.helix != sun.helix or ring.helix != sun.helix:
+        bad = "planet" if planet.helix != sun.helix else "ring"
+        raise InputError(f"gears.{bad}.helix_deg", math.degrees(g[bad].helix), f"the sun's {math.degrees(sun.helix):g}")
+    if sun.helix and planet.hand == sun.hand:
+        raise InputError("gears.planet.hand", hand[planet.hand], f"{hand[-sun.hand]!r} (opposite to the sun)")
+    if sun.helix and ring.hand != planet.hand:
+        raise InputError("gears.ring.hand", hand[ring.hand], f"{hand[planet.hand]!r} (the planet's hand)")
+    check_train_meshes(sun, planet, ring, sun.r_p + planet.r_p, g)
+    check_pin_errors(depth_range(sun, planet, ring), [(p.radial, p.tangential) for p in train.placements],
+                     lambda i: "train.planet_errors.radial_um")
+    return sun, planet, ring
 
 
 def read_planetary_ltca(case: Table) -> TrainCase:
@@ -120,6 +177,7 @@ def read_planetary_ltca(case: Table) -> TrainCase:
     _check_assembly(train.sun, train.planet, train.ring, train.planets)
     opts = _read_ltca(lt, default_torque(train.sun, train.planets, 2), tca, regulation="tca")
     rating = read_rating(case.table("rating", required=False), train_names(train))  # rated at the run's torques
+    check_train_plan(train.sun, train.planet, train.ring, opts)  # GEARFE_MAX_MEMORY_GB, before any work
     return TrainCase("planetary", title, train.sun, train.planet, train.ring, train.planets, TrainErrors(), opts,
                      train, tuple(errors), reg, rating)
 

@@ -3,7 +3,8 @@
 ``gearfe sweep SWEEP.toml --out DIR [--scheduler ADDRESS]``. The sweep file names a base case and
 the axes of the grid (dotted keys of the base case and their values)::
 
-    task = "tca"                          # what each grid point runs: "tca" (gearfe tca) or "stress"
+    task = "tca"                          # what each grid point runs: "tca" (gearfe tca), "stress", or
+                                          # "train_tolerance" (below)
     base = "part1_sun_planet.toml"        # relative to the sweep file
     [[axes]]
     key = "misalignment.d_gamma_arcmin"
@@ -32,6 +33,14 @@ The positions are the innermost axis; a ``[positions]`` table alone (no ``[[axes
 ``DIR/te_loaded.png`` (unloaded TCA TE and loaded TE = TCA TE + FE elastic rotation of the driven
 body, vs φ1) and ``DIR/load_share.png`` (share of the contact force of each modelled tooth pair vs
 φ1), one curve per combination of the other axes.
+
+Tolerance studies of a train (``task = "train_tolerance"``, :mod:`pipelines.sweep.trains`): a train case (kind
+``isostatic`` or ``planetary``) as ``base``, an optional ``set = { "train.sun_axis" = "fixed" }`` of its keys, and a
+``[samples]`` table (``count``, ``seed``, ``tangential_um``, ``radial_um``, ``distribution``) instead of axes: each
+point is one seeded random sample of every planet's pin errors from the band, solved by the train's loaded TCA
+with the model built once per worker; ``DIR/summary.json`` carries the K_γ distribution (``k_gamma``: samples,
+mean, std, min, max, p95; ``k_gamma_members`` for twins) and ``DIR/k_gamma_distribution.png`` its histogram and
+CDF. Example: ``pipelines/cases/sweep_part3_pin_errors.toml``; docs/trains.md, "Tolerance studies".
 
 Every grid point is validated before anything runs, and grid points are distinct cases (a value listed twice
 in an axis, or two combinations of the axes giving the same case, are refused: they would share a folder) (a bad key or value: exit status 2, no files,
@@ -77,10 +86,11 @@ from pipelines.cases.schema import Table
 from pipelines.render.sweep import plot_cycle
 from pipelines.sweep.points import POSITION_KEYS, STEP_KEY, apply_position, expand_positions, stress_scalars
 from pipelines.sweep.points import run_point_stress, validate_stress
+from pipelines.sweep.trains import read_tolerance_sweep, run_sample, sample_scalars, tolerance_points, tolerance_summary
 
 __all__ = ["add_args", "handle", "build_grid", "run_point", "check_scheduler", "TASKS", "MAX_GRID_POINTS"]
 
-TASKS = ("tca", "stress")
+TASKS = ("tca", "stress", "train_tolerance")
 MAX_GRID_POINTS = 100_000  # grid points of one sweep (each is validated before any runs)
 
 
@@ -105,9 +115,17 @@ def _set(d: dict, dotted: str, value, where: str):
 
 def build_grid(sweep_path: str | Path) -> tuple[str, list[dict], list[str]]:
     """(task, points, axis keys): each point {'id', 'values', 'case'} with the patched base case."""
+    return _grid(sweep_path)[:3]
+
+
+def _grid(sweep_path: str | Path) -> tuple:
+    """(task, points, keys, the ToleranceSweep of a train tolerance sweep or None)."""
     sweep_path = Path(sweep_path)
     t = load_case(sweep_path)
     task = t.get("task", str, "tca", choices=TASKS)
+    if task == "train_tolerance":  # samples of pin errors, not a grid (pipelines.sweep.trains)
+        tol = read_tolerance_sweep(t, sweep_path)
+        return (task, *tolerance_points(tol), tol)
     axes = t.tables("axes", required=False) or []  # a stress sweep may have only a [positions] table
     keys, values = [], []
     for a in axes:
@@ -173,7 +191,7 @@ def build_grid(sweep_path: str | Path) -> tuple[str, list[dict], list[str]]:
                              f"the same case as grid point {where(ids[ident])}")
         ids[ident] = shown
         points.append({"id": ident, "values": shown, "case": case})
-    return task, points, keys
+    return task, points, keys, None
 
 
 def _validate(task: str, point: dict) -> None:
@@ -198,7 +216,7 @@ def run_point(task: str, point: dict, out_dir: str) -> dict:
 
     final = Path(out_dir) / "cases" / point["id"]
     row = {"id": point["id"], **point["values"]}
-    scalars = stress_scalars if task == "stress" else _scalars
+    scalars = {"stress": stress_scalars, "train_tolerance": sample_scalars}.get(task, _scalars)
     if (final / "summary.json").is_file():
         summary = json.loads((final / "summary.json").read_text())
         return {**row, **scalars(summary), "status": "ok"}
@@ -208,6 +226,8 @@ def run_point(task: str, point: dict, out_dir: str) -> dict:
         (tmp / "case.json").write_text(json.dumps(point["case"], indent=2))
         if task == "stress":
             summary = run_point_stress(point["case"], tmp)
+        elif task == "train_tolerance":
+            summary = run_sample(point, tmp)
         else:
             summary = run_case(Table(copy.deepcopy(point["case"]), ""), tmp, label=point["id"])
         (tmp / "summary.json").write_text(json.dumps(summary, indent=2, default=to_json))
@@ -288,10 +308,11 @@ def handle(args) -> int:
         raise InputError("--workers", args.workers, "an integer >= 0 (0: in this process)")
     if args.scheduler:
         check_scheduler(args.scheduler)
-    task, points, keys = build_grid(args.sweep)
+    task, points, keys, tol = _grid(args.sweep)
     t0 = time.perf_counter()
     for i, p in enumerate(points, 1):  # all inputs checked before any work
-        _validate(task, p)
+        if tol is None:  # a tolerance sweep's base case was read with its samples
+            _validate(task, p)
         if len(points) >= 200 and (i % 100 == 0 or i == len(points)):
             sys.stderr.write(f"\rvalidating grid points: {i}/{len(points)} ")
             sys.stderr.flush()
@@ -328,6 +349,15 @@ def handle(args) -> int:
     atomic_write_text(out / "results.csv", buf.getvalue())
     failed = [r for r in rows if r["status"] != "ok"]
     print(f"{len(rows) - len(failed)}/{len(rows)} points ok; results in {out / 'results.csv'}")
+    if tol is not None:
+        from pipelines.jsonio import plain
+
+        summary = tolerance_summary(tol, rows, out, time.perf_counter() - t0)
+        atomic_write_text(out / "summary.json", json.dumps(plain(summary), indent=2) + "\n")
+        if "k_gamma" in summary:
+            k = summary["k_gamma"]
+            print(f"K_gamma over {k['samples']} samples: mean {k['mean']:.4f}, 95th percentile {k['p95']:.4f}, "
+                  f"min {k['min']:.4f}, max {k['max']:.4f}; summary in {out / 'summary.json'}")
     pos_key = next((k for k in keys if k in POSITION_KEYS or k == STEP_KEY), None)
     if task == "stress" and pos_key is not None:
         for path in plot_cycle(rows, keys, pos_key, out):

@@ -43,7 +43,7 @@ from pipelines.models.ltca.options import LTCAOptions
 from pipelines.models.stress.case import StressCase
 from pipelines.models.stress.model import memory_limit_gb, part_elements
 
-__all__ = ["LTCAPlan", "plan_ltca", "check_plan", "PLOT_POSITIONS"]
+__all__ = ["LTCAPlan", "plan_ltca", "check_plan", "gear_plan", "PLOT_POSITIONS"]
 
 PLOT_POSITIONS = 400  # positions whose pressure slices are kept in memory for pressure.png
 _NODES_PER_ELEMENT = 1.15  # hexahedral meshes of the mesher (pipelines.models.stress.model)
@@ -66,7 +66,7 @@ class LTCAPlan:
                 "dofs": list(self.dofs), "memory_gb": self.memory_gb}
 
 
-def _gear_plan(gear, teeth: int, hu: float, hz: float) -> tuple[int, int, int, float]:
+def gear_plan(gear, teeth: int, hu: float, hz: float) -> tuple[int, int, int, float]:
     """(flank nodes, elements, DOF, memory [GB]) of one gear's build (P1, P2)."""
     lu = (gear.addendum + gear.tool_addendum) * gear.module / math.cos(gear.pressure_angle)
     m = teeth * (math.ceil(lu / hu) + 1) * (math.ceil(gear.face_width / hz) + 1)
@@ -84,7 +84,7 @@ def plan_ltca(case: StressCase, opts: LTCAOptions, teeth: int | None = None) -> 
     T = case.mesh.teeth if teeth is None else teeth
     m = max(pair.gear1.module, pair.gear2.module)
     hu, hz, _ = opts.sizes(m, min(pair.gear1.face_width, pair.gear2.face_width))
-    per = [_gear_plan(g, T, hu, hz) for g in (pair.gear1, pair.gear2)]
+    per = [gear_plan(g, T, hu, hz) for g in (pair.gear1, pair.gear2)]
     return LTCAPlan(T, *(tuple(p[k] for p in per) for k in range(3)), max(p[3] for p in per))
 
 

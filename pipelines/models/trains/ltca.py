@@ -112,6 +112,7 @@ def run_train_ltca(case: TrainCase, out: Path, say=None, bar=None, runs: list | 
     t0 = time.perf_counter()
     layout, dz = train_layout(case, say)
     model = build_train_model(layout, case.opts, say)
+    model.build_phases()  # the slices of every mesh phase, once (a position then costs its coupled solve)
     t_build = time.perf_counter() - t0
     psi1 = train_positions(model)
     if say is not None:

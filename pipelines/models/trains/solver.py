@@ -61,12 +61,13 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.linalg import cho_factor, cho_solve
+from scipy.linalg.lapack import dpotrf, dpotrs
 
 from fem.material import Material
 from tca.errors import ConvergenceError
 
-from pipelines.models.ltca.contact import SliceLaw, local_compliance
+from pipelines.models.ltca.compliance import flattening
+from pipelines.models.ltca.contact import SliceLaw
 
 __all__ = ["MeshBlock", "RigidSystem", "SolveOptions", "TrainSolution", "Warm", "mesh_lcp", "solve_train"]
 
@@ -179,13 +180,18 @@ class _Meshes:
         self.factors = [dict() for _ in blocks]  # Cholesky factors of M[A, A] per active set (M is fixed here)
 
     def solve(self, j: int, idx, rhs):
-        """M_j[idx, idx]^-1 rhs with the factor of that active set computed once."""
+        """M_j[idx, idx]^-1 rhs with the Cholesky factor of that active set computed once (LAPACK potrf/potrs called
+        directly: the solves are small and many, scipy's checking wrappers cost more than the arithmetic)."""
         key = idx.tobytes()
         f = self.factors[j].get(key)
         if f is None:
-            f = cho_factor(self.M[j][np.ix_(idx, idx)], check_finite=False)
+            f, info = dpotrf(self.M[j][np.ix_(idx, idx)], lower=0, clean=0)
+            if info != 0:
+                raise ConvergenceError("train LTCA: mesh contact", f"compliance block not positive definite "
+                                       f"(potrf info {info})", float(info), 0)
             self.factors[j][key] = f
-        return cho_solve(f, rhs, check_finite=False)
+        x, info = dpotrs(f, rhs, lower=0)
+        return x
 
     def loads(self, q):
         F = []
@@ -315,18 +321,27 @@ def _first_contact(mesh: _Meshes, q, F, direction) -> np.ndarray:
 def _local_law(blocks, F, material: Material, c_loc: float, tangent: bool):
     """The local (Hertzian) compliance of every mesh at loads F: (diagonal, shift of c) per mesh. Secant: δ_s/F_s, no
     shift. Tangent (loaded slices): δ_s(F) ≈ δ_s(F0) + D_s (F − F0), D_s = dδ_s/dF_s, so M gets D and c gets
-    δ_s(F0) − D_s F0: Newton's method on the flattening law (the converged loads are the same)."""
+    δ_s(F0) − D_s F0: Newton's method on the flattening law (the converged loads are the same).
+
+    D_s in closed form: each body's flattening d_k = a w (ln(2 h_k / b) + c), a = 2(1 − ν²)/(π E), with
+    b ∝ √w (:func:`pipelines.models.ltca.compliance.flattening`), has dd_k/dw = d_k/w − a/2 where d_k > 0 (0 where it
+    is clipped at 0); with w = F/ℓ, D_s = δ_s/F_s − a n_s/(2 ℓ_s), n_s the bodies with d_k > 0."""
     diag, shift = [], []
+    a = 2.0 * (1.0 - material.nu ** 2) / (math.pi * material.E)
+    Es = material.E / (2.0 * (1.0 - material.nu ** 2))
     for b, Fj in zip(blocks, F):
-        sec = local_compliance(Fj, b.law, material, c_loc, b.w_guess)
+        law = b.law
+        w = np.where(Fj > 0, Fj / law.length, b.w_guess)
+        hb = np.sqrt(4.0 * w * law.radius / (math.pi * Es))
+        d0 = flattening(w, hb, law.depth[:, 0], material, c_loc)
+        d1 = flattening(w, hb, law.depth[:, 1], material, c_loc)
+        sec = (d0 + d1) / (w * law.length)  # = local_compliance(Fj, law, material, c_loc, b.w_guess)
         on = Fj > 0
         if not tangent or not on.any():
             diag.append(sec)
             shift.append(np.zeros_like(sec))
             continue
-        h = 1e-4
-        up = local_compliance(Fj * (1 + h), b.law, material, c_loc, b.w_guess)
-        D = np.where(on, (up * (1 + h) - sec) / h, sec)  # d(sec F)/dF at F > 0
+        D = np.where(on, sec - 0.5 * a * ((d0 > 0).astype(float) + (d1 > 0)) / law.length, sec)
         diag.append(D)
         shift.append(np.where(on, (sec - D) * Fj, 0.0))
     return diag, shift
