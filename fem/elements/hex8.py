@@ -161,7 +161,7 @@ class ElementMatrices:
     geometry: HexGeometry
 
 
-def hex8_matrices(points, cells, lam, mu, incompatible: bool = True, chunk: int = 4000) -> ElementMatrices:
+def hex8_matrices(points, cells, lam, mu, incompatible: bool = True, chunk: int = 1000) -> ElementMatrices:
     """Stiffness of all cells (C3D8 or C3D8I-like with condensed modes), chunked to bound memory."""
     geo = hex_geometry(points, cells, incompatible)
     m = len(cells)
