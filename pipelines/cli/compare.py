@@ -2,7 +2,8 @@
 
 ``gearfe compare NEW.toml CONVENTIONAL.toml --out DIR`` runs both stress cases through
 :func:`pipelines.report.run.run_pipeline` into ``DIR/new`` and ``DIR/conventional`` (each a complete
-``gearfe run`` folder) and writes:
+``gearfe run`` folder; the two designs side by side in two processes, :mod:`pipelines.report.designs`,
+unless ``--jobs 1``) and writes:
 
 * ``compare_zones.png`` — the contact zones of every mesh (rows: designs; columns: interface and
   member, e.g. the planet members 2a and 2b with the sun and with the ring) coloured by von Mises
@@ -40,6 +41,7 @@ from pipelines.cli.outdir import staged_output
 from pipelines.render.plots import side_by_side
 from pipelines.report.figures import picture_range
 from pipelines.report.compare import shared_comparison
+from pipelines.report.designs import DesignSteps, run_designs
 from pipelines.report.html import compare_html, run_html
 from pipelines.report.run import add_images, run_pipeline, zone_limits, zone_name
 
@@ -55,6 +57,9 @@ def add_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("--out", required=True, help="output folder")
     add_overrides(p)
     p.add_argument("--edges", action="store_true", help="draw the element edges on the teeth views")
+    p.add_argument("--jobs", type=int, default=2, choices=(1, 2),
+                   help="2 (default): the two designs run side by side in two processes (both models in memory at "
+                        "once); 1: one after the other")
 
 
 def compare_table(summaries: dict) -> list[dict]:
@@ -171,22 +176,30 @@ def handle(args) -> int:
     paths = {LABELS[0]: args.new, LABELS[1]: args.conventional}
     with staged_output(args.out) as tmp:
         tmp = Path(tmp)
-        summaries, runs = {}, {}
-        for label, case in cases.items():
+        jobs = getattr(args, "jobs", 2)
+
+        def say(label):
+            return progress if jobs < 2 else (lambda msg: progress(f"({label}) {msg}"))
+
+        def solve(label):
             progress(f"== {label} design: {paths[label]}")
             (tmp / label).mkdir()
-            runs[label] = run_pipeline(case, tmp / label, progress, images=False)
-        lims = [zone_limits(runs[k].summary, runs[k].mesh, runs[k].result) for k in LABELS]
-        vm = max(x["von_mises"] for x in lims)
-        top = max(picture_range(runs[k]).hi for k in LABELS)  # one clipped range for both designs
-        for label in LABELS:
-            s = add_images(runs.pop(label), tmp / label, {"von_mises": vm}, progress, top=top,
-                           show_edges=getattr(args, "edges", False)).summary  # frees the meshes and fields after
+            return run_pipeline(cases[label], tmp / label, say(label), images=False)
+
+        def limits(run):
+            # one von Mises range for both designs' zone images, one clipped top for their pictures
+            return zone_limits(run.summary, run.mesh, run.result)["von_mises"], picture_range(run).hi
+
+        def finish(label, run, vm, top):
+            s = add_images(run, tmp / label, {"von_mises": vm}, say(label), top=top,
+                           show_edges=getattr(args, "edges", False)).summary
             s = {"kind": "run", "case": str(paths[label]), **s, **torque_record(cases[label])}
             s["files"] = [*s["files"], "report.html"]
             write_summary(s, tmp / label / "summary.json")
             run_html(s, tmp / label, Path(paths[label]).read_text())
-            summaries[label] = s
+            return s
+
+        summaries = run_designs(LABELS, DesignSteps(solve, limits, finish), jobs=jobs)
         zones = [(itf, mem) for itf, d in summaries[LABELS[0]]["interfaces"].items() for mem in d["members"]]
         imgs, pimgs, titles = [], [], []
         for label in LABELS:
