@@ -42,7 +42,7 @@ def swept(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("sweep_stress")
     sw = _setup(tmp)
     out = tmp / "out"
-    assert main(["sweep", str(sw), "--out", str(out), "--workers", "2"]) == 0
+    assert main(["sweep", str(sw), "--out", str(out), "--workers", "1"]) == 0
     rows = list(csv.DictReader(open(out / "results.csv")))
     return sw, out, rows
 
