@@ -9,8 +9,10 @@ gear where ISO's assumption (one pair carries the whole load) is the model's:
 * contact: the smooth peak of the loaded pair at the pinion's inner point of single contact ("lpstc") against ISO
   6336-2's σ_H0·Z_B/Z_ε (σ_H0 with the FE's E, ν; Z_ε, ISO's allowance for sharing, reported beside); target 5 %,
   measured +2.6 % (921.1 against 897.8 MPa, refine 1, 78k DOF, 14 s);
-* three teeth at the HPSTC (refine 0.5): the entering pair touches with the wheel's tip edge; its peak is flagged
+* three teeth at the HPSTC (refine 0.3): the entering pair touches with the wheel's tip edge; its peak is flagged
   with its location and pair, apart from the loaded pair's smooth peak (the headline ``contact_peak_mpa``).
+
+The internal ring's critical section is checked on the model of test_internal_root.py (one solve for both).
 
 The crowned helical pair of issue 25 (pipelines/cases/stress_helical_crowned.toml) runs in ``make bench``
 (``test_helical_loaded_tooth_is_stable_and_the_tip_bearing_peak_apart``): refine 0.5 and 1 need 5 and 8 GB.
@@ -40,12 +42,18 @@ def sigma_f0(c, gear, torque):
 
 
 def test_loaded_tooth_at_the_30_degree_section_against_sigma_f0_at_the_hpstc(tmp_path):
-    c = spur("hpstc", contact=0.2)
-    s = run_stress(c, tmp_path).summary
+    """Also the pinion's fillet maximum principal stress of the result (``fillet_stress``) against σ_F0 (10 %;
+    measured 121.4 against 117.7 MPa, +3.2 %): this is the model of test_standard_gears' former
+    ``test_pinion_root_stress_at_the_hpstc_against_iso_6336_3``, solved once for both."""
+    c = spur("hpstc", contact=0.2)  # the root stress does not need the Hertz band resolved (b = 0.125 mm)
+    run = run_stress(c, tmp_path)
+    s = run.summary
     g1 = c.pair.gear1
     sig = sigma_f0(c, g1, c.torque * g1.teeth / c.pair.gear2.teeth)
     rs = s["root_stress"]["pinion"]
     assert s["iso6336_sigma_f0_mpa"]["pinion"] == pytest.approx(sig, rel=1e-9)
+    fe = run.result.fillet_stress()["pinion/tooth0/fillet_pos"]["max_principal_mpa"]
+    assert fe == pytest.approx(sig, rel=0.10)
     assert rs["tooth"] == 0 and rs["load_share"] == pytest.approx(1.0)
     assert rs["critical_section_mpa"] == pytest.approx(sig, rel=0.10)
     # the critical section lies on the fillet, below its maximum, between the root and the base circle
@@ -68,7 +76,10 @@ def test_peak_pressure_at_the_pinions_inner_point_of_single_contact(tmp_path):
 
 
 def test_entering_pair_tip_edge_is_flagged_apart_from_the_loaded_pair(tmp_path):
-    c = spur("hpstc", teeth=3, refine=0.5)
+    """A behaviour (the flag, its location and pair, the headline apart from it), not a value: refine 0.3 (23k DOF;
+    was 0.5). Measured at 0.3: one edge peak ("corner", the wheel's, pair pinion18-wheel23) of 1850 MPa, the loaded
+    pair's smooth peak 717 MPa, the pinion's loaded tooth share 0.59."""
+    c = spur("hpstc", teeth=3, refine=0.3)
     s = run_stress(c, tmp_path).summary
     edges = s["edge_peaks"]
     assert len(edges) == 1
@@ -84,22 +95,6 @@ def test_entering_pair_tip_edge_is_flagged_apart_from_the_loaded_pair(tmp_path):
     shares = {t["tooth"]: t["load_share"] for t in s["root_stress"]["wheel"]["teeth"]}
     assert sum(shares.values()) == pytest.approx(1.0, abs=1e-9)
     assert s["max_fillet_stress_mpa"] <= s["max_fillet_stress_raw_mpa"]
-
-
-def test_internal_ring_critical_section_is_found(tmp_path):
-    """The ring of stress_internal_pair.toml (24/72), one tooth per gear at the pinion's LPSTC, refine 0.5: its 30°
-    tangent lies on the flank just above the generated fillet (the flank of an internal tooth is inclined more than
-    30° near its root), between the tip and the root circles. ISO's substitute rack is conservative for the ring:
-    measured 64.4 MPa at the section, fillet maximum 88.0, σ_F0 99.4 MPa."""
-    c = read_stress_case(load_case(CASES_DIR / "stress_internal_pair.toml"))
-    c = replace(c, position="lpstc", mesh=replace(c.mesh, teeth=1, refine=0.5))
-    s = run_stress(c, tmp_path).summary
-    ring = c.pair.gear2
-    rs = s["root_stress"][ring.name]
-    assert rs["critical_section_mpa"] is not None
-    r = math.hypot(rs["critical_section_point_mm"][0] + c.pair.E, rs["critical_section_point_mm"][1])  # ring centre (-E, 0)
-    assert ring.r_tip < r < ring.r_root
-    assert rs["critical_section_mpa"] < rs["fillet_max_mpa"] < s["iso6336_sigma_f0_mpa"][ring.name]
 
 
 @pytest.mark.bench

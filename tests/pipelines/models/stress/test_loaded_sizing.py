@@ -15,7 +15,9 @@ from tests.support.shipped import shipped_table
 
 def test_a_loaded_pair_without_a_zone_is_flagged_and_remeshed(tmp_path, monkeypatch):
     monkeypatch.setattr(scene_module, "ZONE_SHARE", 0.5)
-    case = read_stress_case(shipped_table("stress_pair_small", {"position": None, "phi1_deg": -5.71, "mesh.refine": 0.3,
+    # refine 0.2 (was 0.3): a behaviour (the flag, the remesh); measured at 0.2: the unzoned pair 0-0 loaded with 0.48
+    # of the force (0.47 at 0.3), 21.0k DOF -> 24.4k after the remesh (40.5k -> 46.9k at 0.3)
+    case = read_stress_case(shipped_table("stress_pair_small", {"position": None, "phi1_deg": -5.71, "mesh.refine": 0.2,
                                                                 "mesh.remesh": True}))
     s = run_stress(case, tmp_path / "remesh").summary
     first = s["position"]["remeshed"]

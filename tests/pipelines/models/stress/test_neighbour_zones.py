@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from pipelines.cases.stress import read_stress_case
-from pipelines.models.stress.run import build_scene, run_stress
+from pipelines.models.stress.run import run_stress
 
 from tests.support.shipped import shipped_table
 from tca.contact.systems import PlacedFlank
@@ -27,18 +27,34 @@ def internal_case(phi1_deg, teeth=3, refine=0.5):
                                                  "mesh.refine": refine}))
 
 
+@pytest.fixture(scope="module")
+def runs(tmp_path_factory):
+    """The solved internal pair per angle, once: phi1 = 3.0 deg also gives the scene of the zone test below."""
+    cache = {}
+
+    def run(phi1_deg):
+        if phi1_deg not in cache:
+            cache[phi1_deg] = run_stress(internal_case(phi1_deg), tmp_path_factory.mktemp("out"))
+        return cache[phi1_deg]
+    return run
+
+
 @pytest.mark.parametrize("phi1_deg", [-3.75, 3.0, 3.375])
-def test_internal_pair_with_neighbours_solves_and_balances(tmp_path, phi1_deg):
-    s = run_stress(internal_case(phi1_deg), tmp_path / "out").summary
+def test_internal_pair_with_neighbours_solves_and_balances(runs, phi1_deg):
+    s = runs(phi1_deg).summary
     shares = next(iter(s["load_share"].values()))["teeth"]
     assert sum(shares.values()) == pytest.approx(1.0, abs=1e-9)
     assert s["torque_balance_error"] < 1e-3
 
 
-def test_zones_of_a_neighbour_sit_at_one_point_in_space():
-    """Each neighbouring pair's two zone centres are the same point of the pair frame within the zone size."""
+def test_zones_of_a_neighbour_sit_at_one_point_in_space(runs):
+    """Each neighbouring pair's two zone centres are the same point of the pair frame within the zone size.
+
+    The scene is the one meshed and solved at 3.0 deg above (build_scene of the same case; one TCA, not two)."""
     case = internal_case(3.0)
-    scene, _ = build_scene(case)
+    run = runs(3.0)
+    assert run.summary["position"]["remeshed"] is None  # the scene of build_scene(case), not a remesh's
+    scene = run.scene
     itf = scene.interfaces[0]
     pair, c = case.pair, itf.contact
     m1, m2 = pair.mounts()
