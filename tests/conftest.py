@@ -17,7 +17,7 @@ offscreen()
 # Seconds per file from `pytest --durations=0` (2-core machine); a file not listed keeps its place after these.
 HEAVY_FILES = {
     "tests/pipelines/report/test_compare.py": 100,
-    "tests/pipelines/sweep/test_sweep_stress.py": 65,
+    "tests/pipelines/sweep/test_sweep_stress.py": 20,
     "tests/pipelines/models/stress/test_stress.py": 55,
     "tests/pipelines/models/ltca/test_ltca.py": 40,
     "tests/pipelines/models/stress/test_stress_neighbours.py": 35,
