@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import contextlib
 import re
+import signal
 from pathlib import Path
 
 import meshio
@@ -116,20 +117,35 @@ def write_inp(mesh: HexMesh, path: str | Path, element_type: str = "C3D8") -> di
     return names
 
 
+def _keep_sigpipe(before) -> None:
+    """Put back the SIGPIPE disposition Python had: gmsh.initialize resets SIGPIPE to its default (terminate) in
+    the C library, so that a later write to a closed pipe (a reader gone, a child process that died) kills the
+    whole process silently instead of raising BrokenPipeError (seen: a test worker killed by SIGPIPE, exit status
+    13). Only the main thread may set a handler; elsewhere it is left as gmsh set it."""
+    if before is None:
+        return
+    with contextlib.suppress(ValueError):
+        signal.signal(signal.SIGPIPE, before)
+
+
 @contextlib.contextmanager
 def gmsh_session():
-    """gmsh initialized for the block (quiet, no signal handlers); finalized if we initialized it."""
+    """gmsh initialized for the block (quiet, no signal handlers, SIGPIPE as before); finalized if we initialized
+    it."""
     import gmsh
 
     own = not gmsh.isInitialized()
+    before = signal.getsignal(signal.SIGPIPE) if hasattr(signal, "SIGPIPE") else None
     if own:
         gmsh.initialize(interruptible=False)
+        _keep_sigpipe(before)
     gmsh.option.setNumber("General.Terminal", 0)
     try:
         yield gmsh
     finally:
         if own:
             gmsh.finalize()
+            _keep_sigpipe(before)
 
 
 def load_gmsh(gmsh, mesh: HexMesh, face_sets: bool = True) -> dict[str, int]:

@@ -78,3 +78,25 @@ def test_abaqus_names():
     assert abaqus_name("3rd/set") == "S_3RD_SET"
     with pytest.raises(InputError):
         abaqus_name("x" * 81)
+
+
+def test_gmsh_leaves_sigpipe_ignored():
+    """gmsh.initialize resets SIGPIPE to terminate the process; the session puts Python's disposition (ignored:
+    a closed pipe raises BrokenPipeError) back, inside the block and after it. In a fresh interpreter, so that the
+    check does not depend on what ran before in this one."""
+    import subprocess
+    import sys
+
+    code = """
+from mesher.export import gmsh_session
+def ignored():
+    for line in open('/proc/self/status'):
+        if line.startswith('SigIgn'):
+            return bool(int(line.split()[1], 16) & (1 << 12))
+print(ignored(), end=' ')
+with gmsh_session():
+    print(ignored(), end=' ')
+print(ignored())
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()
+    assert out == ["True", "True", "True"], out
