@@ -45,17 +45,8 @@ _Y = np.array([0, 2, 3, 4])  # unknowns of (S1): u1, u2, v2, phi2
 
 def _inner(fun, s: float, y0: np.ndarray, tol: float):
     """y(s) of (S1) by Newton from y0; (x, F, J) at the solution or None."""
-    def g(y, idx):
-        x = np.insert(y, 1, s, axis=-1)
-        F, J = fun(x, np.zeros(len(y), int))
-        return F[:, :4], J[:, :4][:, :, _Y]
-
-    r = newton(g, y0[None], NewtonOptions(tol=tol, maxiter=30, max_backtracks=10), raise_on_failure=False)
-    if not r.converged[0]:
-        return None
-    x = np.insert(r.x[0], 1, s)
-    F, J = fun(x[None], np.zeros(1, int))
-    return x, F[0], J[0]
+    x, F, J, ok = _sections(fun, np.array([float(s)]), np.asarray(y0, float)[None], tol)
+    return (x[0], F[0], J[0]) if ok[0] else None
 
 
 def _slope(J: np.ndarray) -> tuple[float, np.ndarray]:
