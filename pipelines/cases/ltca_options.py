@@ -11,7 +11,7 @@ from tca.errors import InputError
 from pipelines.cases.schema import Table
 from pipelines.models.ltca.options import LOCAL, LTCAOptions
 
-__all__ = ["read_ltca_options", "read_torques"]
+__all__ = ["read_ltca_options", "read_torques", "read_flank_grid_keys"]
 
 
 def read_torques(t: Table, torque: float) -> tuple[float, ...]:
@@ -24,19 +24,25 @@ def read_torques(t: Table, torque: float) -> tuple[float, ...]:
     return tuple(float(x) * 1e3 for x in tq)
 
 
+def read_flank_grid_keys(t: Table) -> dict:
+    """The flank grid keys of an ``[ltca]`` table, shared by the pair and train readers: profile_size, axial_size,
+    slice [mm] (None: the default grid) and reach [mm] (read in µm)."""
+    pos = dict(lo=0.0, lo_open=True, hi=100.0)
+    return dict(profile_size=t.get("profile_size_mm", float, None, **pos),
+                axial_size=t.get("axial_size_mm", float, None, **pos),
+                slice=t.get("slice_mm", float, None, **pos),
+                reach=t.get("reach_um", float, 50.0, lo=0.0, lo_open=True, hi=5000.0) * 1e-3)
+
+
 def read_ltca_options(t: Table | None, torque: float) -> LTCAOptions:
     """The :class:`LTCAOptions` of an ``[ltca]`` table (module docstring); ``torque`` [N mm] the default torque."""
     if t is None:
         return LTCAOptions(torques=(torque,))
-    pos = dict(lo=0.0, lo_open=True, hi=100.0)
     torques = read_torques(t, torque)
     o = LTCAOptions(
         positions=t.get("positions", int, 100, lo=1, hi=100000),
         torques=torques,
-        profile_size=t.get("profile_size_mm", float, None, **pos),
-        axial_size=t.get("axial_size_mm", float, None, **pos),
-        slice=t.get("slice_mm", float, None, **pos),
-        reach=t.get("reach_um", float, 50.0, lo=0.0, lo_open=True, hi=5000.0) * 1e-3,
+        **read_flank_grid_keys(t),
         check_positions=t.get("check_positions", int, 0, lo=0, hi=100),
         local=t.get("local", str, "strip", choices=LOCAL),
     )

@@ -34,7 +34,7 @@ import math
 from tca.errors import InputError
 from tca.pair.analysis import TCAOptions
 
-from pipelines.cases.ltca_options import read_torques
+from pipelines.cases.ltca_options import read_flank_grid_keys, read_torques
 from pipelines.cases.rating import read_rating, train_names
 from pipelines.cases.schema import Table
 from pipelines.models.trains.case import TrainCase
@@ -55,7 +55,6 @@ def default_torque(sun, planets: int, members: int = 1) -> float:
 def _read_ltca(t: Table | None, torque: float, tca: TCAOptions, **fixed) -> TrainOptions:
     if t is None:
         return TrainOptions(torques=(torque,), tca=tca, **fixed)
-    pos = dict(lo=0.0, lo_open=True, hi=100.0)
     torques = read_torques(t, torque)
     stiff = dict(lo=0.0, lo_open=True, hi=1e6)
     sup = t.get("sun_support_n_per_um", float, None, **stiff)
@@ -64,10 +63,7 @@ def _read_ltca(t: Table | None, torque: float, tca: TCAOptions, **fixed) -> Trai
         positions_per_cycle=t.get("positions_per_cycle", int, 10, lo=1, hi=1000),
         carrier_revolutions=t.get("carrier_revolutions", float, 1.0, lo=0.0, lo_open=True, hi=20.0),
         torques=torques,
-        profile_size=t.get("profile_size_mm", float, None, **pos),
-        axial_size=t.get("axial_size_mm", float, None, **pos),
-        slice=t.get("slice_mm", float, None, **pos),
-        reach=t.get("reach_um", float, 50.0, lo=0.0, lo_open=True, hi=5000.0) * 1e-3,
+        **read_flank_grid_keys(t),
         teeth=t.get("teeth", int, 3, lo=3, hi=9),
         sun_support=None if sup is None else sup * 1e3,
         pin_stiffness=None if pins is None else pins * 1e3,
