@@ -43,7 +43,7 @@ from pipelines.models.ltca.options import LTCAOptions
 from pipelines.models.stress.case import StressCase
 from pipelines.models.stress.model import memory_limit_gb, part_elements
 
-__all__ = ["LTCAPlan", "plan_ltca", "check_plan", "gear_plan", "PLOT_POSITIONS"]
+__all__ = ["LTCAPlan", "plan_ltca", "check_plan", "gear_plan", "grid_blame", "PLOT_POSITIONS"]
 
 PLOT_POSITIONS = 400  # positions whose pressure slices are kept in memory for pressure.png
 _NODES_PER_ELEMENT = 1.15  # hexahedral meshes of the mesher (pipelines.models.stress.model)
@@ -88,6 +88,20 @@ def plan_ltca(case: StressCase, opts: LTCAOptions, teeth: int | None = None) -> 
     return LTCAPlan(T, *(tuple(p[k] for p in per) for k in range(3)), max(p[3] for p in per))
 
 
+def grid_blame(opts, hu0: float, hz0: float, fallback: tuple[str, object]) -> tuple[str, object]:
+    """The [ltca] key (and its value) that made a flank grid too large: the finer of profile_size_mm and
+    axial_size_mm relative to the default sizes hu0, hz0 [mm]; ``fallback`` (key, value) when both are default."""
+    blame = {}
+    if opts.profile_size is not None:
+        blame["ltca.profile_size_mm"] = (hu0 / opts.profile_size, opts.profile_size)
+    if opts.axial_size is not None:
+        blame["ltca.axial_size_mm"] = (hz0 / opts.axial_size, opts.axial_size)
+    if not blame:
+        return fallback
+    key, (_, value) = max(blame.items(), key=lambda kv: kv[1][0])
+    return key, value
+
+
 def check_plan(case: StressCase, opts: LTCAOptions, teeth: int | None = None, limit_gb: float | None = None) -> LTCAPlan:
     """The plan, or an InputError naming the grid key that made it too large (the finer of the profile and
     axial sizes relative to their defaults; ``mesh.teeth`` when the grid is the default one)."""
@@ -98,12 +112,7 @@ def check_plan(case: StressCase, opts: LTCAOptions, teeth: int | None = None, li
     pair = case.pair
     m = max(pair.gear1.module, pair.gear2.module)
     hu0, hz0, _ = LTCAOptions().sizes(m, min(pair.gear1.face_width, pair.gear2.face_width))
-    blame = {}
-    if opts.profile_size is not None:
-        blame["ltca.profile_size_mm"] = (hu0 / opts.profile_size, opts.profile_size)
-    if opts.axial_size is not None:
-        blame["ltca.axial_size_mm"] = (hz0 / opts.axial_size, opts.axial_size)
-    key, (_, value) = max(blame.items(), key=lambda kv: kv[1][0]) if blame else ("mesh.teeth", (0, plan.teeth))
+    key, value = grid_blame(opts, hu0, hz0, ("mesh.teeth", plan.teeth))
     raise InputError(key, value, f"a flank grid whose build fits in memory (limit {limit:.3g} GB, GEARFE_MAX_MEMORY_GB)",
                      f"estimated per gear {max(plan.flank_nodes):.3g} flank nodes condensed, {max(plan.elements):.3g} "
                      f"elements, {max(plan.dofs):.3g} DOF: {plan.memory_gb:.3g} GB")

@@ -26,7 +26,7 @@ from dataclasses import dataclass, replace
 
 from tca.errors import InputError
 
-from pipelines.models.ltca.plan import gear_plan
+from pipelines.models.ltca.plan import gear_plan, grid_blame
 from pipelines.models.stress.model import memory_limit_gb
 from pipelines.models.trains.options import TrainOptions
 
@@ -67,12 +67,7 @@ def check_train_plan(sun, planet, ring, opts: TrainOptions, limit_gb: float | No
         return plan
     hu0, hz0, _ = replace(opts, profile_size=None, axial_size=None).sizes(
         sun.module, min(g.face_width for g in (sun, planet, ring)))
-    blame = {}
-    if opts.profile_size is not None:
-        blame["ltca.profile_size_mm"] = (hu0 / opts.profile_size, opts.profile_size)
-    if opts.axial_size is not None:
-        blame["ltca.axial_size_mm"] = (hz0 / opts.axial_size, opts.axial_size)
-    key, (_, value) = max(blame.items(), key=lambda kv: kv[1][0]) if blame else ("ltca.teeth", (0, opts.teeth))
+    key, value = grid_blame(opts, hu0, hz0, ("ltca.teeth", opts.teeth))
     raise InputError(key, value, f"a flank grid whose four flank models fit in memory (limit {limit:.3g} GB, "
                      f"GEARFE_MAX_MEMORY_GB)", f"estimated {max(plan.flank_nodes):.3g} flank nodes and "
                      f"{max(plan.dofs):.3g} DOF in the largest flank model: {plan.memory_gb:.3g} GB (docs/trains.md)")
