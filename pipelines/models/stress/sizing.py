@@ -8,10 +8,13 @@ zone, on the growth of the sizes across the tooth toward its mid-surface, or on 
 (docs/benchmarks.md, "Third round: grading away from the zones", measured on the crowned pair). Hence, at refine 1,
 
 .. math::
-    h_f = 0.05\,m \quad (G1), \qquad h_{z,max} = 2\,h_{coarse} \quad (G2), \qquad q_{section} = \max(1.5, q) \quad (G3)
+    h_f = 0.05\,m \quad (G1), \qquad h_{z,max} = \max(h_{coarse},\ \min(2\,h_{coarse},\ 1.5\,m)) \quad (G2),
+    \qquad q_{section} = \max(1.5, q) \quad (G3)
 
 (G1) the fillet arc of the loaded teeth (was 0.1 m), (G2) the largest axial spacing of a graded member outside its
-zones (was the coarse size), (G3) the growth across the loaded tooth (flank and fillet toward the mid-surface) and
+zones (was the coarse size; 2 coarse sizes at refine >= 1, never beyond the 1.5 m measured at refine 1, so coarser
+models keep their coarse size: at refine 0.3 a 5 m spacing moved the conventional twin's torque balance past 1e-3),
+(G3) the growth across the loaded tooth (flank and fillet toward the mid-surface) and
 along its root (was q, the growth of the contact grading, 1.3). The layers under the fillet are graded like those
 under the flank (:mod:`mesher.tooth`, Step 3).
 """
@@ -31,7 +34,8 @@ from tca.geometry.gear import Gear
 from tca.pair.analysis import ContactKind
 
 __all__ = ["HertzContact", "hertz_contact", "SizeRules", "ContactSizes", "contact_sizes", "zone_sizes", "unloaded_sizes",
-           "NEIGHBOUR", "FILLET", "AXIAL_COARSE", "SECTION_GROWTH", "SIZING"]
+           "NEIGHBOUR", "FILLET", "AXIAL_COARSE", "AXIAL_COARSE_MAX", "SECTION_GROWTH",
+           "SIZING"]
 
 # ---------------------------------------------------------------------------------------------- Hertz and sizes
 @dataclass(frozen=True)
@@ -101,6 +105,7 @@ def hertz_contact(lam: tuple, load: float, material: Material, length: float) ->
 NEIGHBOUR = 0.1  # default profile size on the other teeth's loaded flanks [module] (converged load share, see README)
 FILLET = 0.05  # default size along the loaded teeth's fillets [module] (G1)
 AXIAL_COARSE = 2.0  # largest axial spacing of a graded member outside its zones [coarse sizes] (G2)
+AXIAL_COARSE_MAX = 1.5  # ... and never beyond this [module] unless the coarse size is (G2)
 SECTION_GROWTH = 1.5  # least growth across the loaded tooth and along its root (G3)
 
 
@@ -247,7 +252,8 @@ def _sizes(rules: SizeRules, m: float, contact: float, axial: float, ext_u: floa
     neighbour = min((rules.neighbour if rules.neighbour is not None else NEIGHBOUR * m) / max(r, 1.0), coarse)
     return ContactSizes(coarse, contact, axial, fillet, neighbour, rules.rim_depth if rules.rim_depth is not None else 3.0 * m,
                         rules.growth, ext_u, ext_z, rules.teeth,
-                        max(rules.axial_coarse / r if rules.axial_coarse is not None else AXIAL_COARSE * coarse, axial),
+                        max(rules.axial_coarse / r if rules.axial_coarse is not None else
+                            max(coarse, min(AXIAL_COARSE * coarse, AXIAL_COARSE_MAX * m)), axial),
                         rules.section_growth if rules.section_growth is not None else max(SECTION_GROWTH, rules.growth))
 
 
