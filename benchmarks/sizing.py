@@ -39,9 +39,9 @@ from pathlib import Path
 from tca.errors import InputError
 
 from benchmarks.convergence import richardson
+from pipelines.cases.kinds import kind_of, read_checked
 from pipelines.cases.reader import CASES_DIR, load_case
 from pipelines.cases.schema import Table
-from pipelines.cases.stress import read_stress_case
 from pipelines.models.stress.model import check_resources, estimate_resources, mesh_scene
 from pipelines.models.stress.run import build_scene, run_stress
 
@@ -90,12 +90,18 @@ def _table(name: str, overrides: dict) -> Table:
     return t
 
 
+def _case(name: str, overrides: dict):
+    """A shipped case read as ``gearfe stress`` reads it (its kind's reader: a pair, twin or train stress case)."""
+    t = _table(name, overrides)
+    return read_checked(t, kind_of(t, "stress"), "stress")
+
+
 def run_row(name: str, overrides: dict, rules: dict | None = None) -> dict:
     """One solved case: DOF, times [s], peak pressure, fillet and von Mises stresses [MPa], shares, Hertz.
 
     ``rules``: fields of the case's :class:`pipelines.models.stress.sizing.SizeRules` to replace (those without a
     case key: ``axial_coarse``, ``section_growth``)."""
-    case = read_stress_case(_table(name, overrides))
+    case = _case(name, overrides)
     if rules:
         case = dataclasses.replace(case, mesh=dataclasses.replace(case.mesh, **rules))
     t0 = time.perf_counter()
@@ -118,7 +124,7 @@ def estimate_sweep() -> list[dict]:
               for k in (False, True) for r in (0.25, 0.5, 1.0)]
     rows = []
     for name, ov in cases:
-        case = read_stress_case(_table(name, ov))
+        case = _case(name, ov)
         scene, _ = build_scene(case)
         est = estimate_resources(scene)
         row = {"case": name, "overrides": ov, "estimated_dofs": est.dofs, "estimated_gb": est.memory_gb}

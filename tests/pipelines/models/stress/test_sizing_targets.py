@@ -61,7 +61,7 @@ def test_fzg_pair_at_the_pitch_point(tmp_path):
 
 def test_twin_new_design(tmp_path):
     s = run_stress(read_stress_case(shipped_table("stress_part1_new")), tmp_path / "twin").summary
-    assert s["dofs"] <= 350_000  # measured 330,192 (341,424 before the grading of item 2)
+    assert s["dofs"] <= 350_000  # measured 342,492 (341,424 before the grading of item 2)
     sun, ring = s["load_share"]["sun-planet"]["members"], s["load_share"]["planet-ring"]["members"]
     assert sun["a"] == pytest.approx(0.511, abs=0.02)  # measured 0.506
-    assert ring["a"] == pytest.approx(0.388, abs=0.02)  # measured 0.390
+    assert ring["a"] == pytest.approx(0.388, abs=0.02)  # measured 0.389
