@@ -158,7 +158,8 @@ def grading_study(out: Path) -> dict:
          "|---|---|---|---|---|---|---|"]
     for label, r in rows.items():
         sh = ", ".join(f"{v:.3f}" for v in r["max_pair_share"].values())
-        L.append(f"| {label} | {r['dofs']} | {r['solve_s']:.1f} | {r['peak_gb']:.2f} | {r['fillet']:.1f} | {r['p']:.1f} | {sh} |")
+        L.append(f"| {label} | {r['dofs']} | {r['solve_s']:.1f} | {r['peak_gb']:.2f} | {r['fillet']:.1f} | {r['p']:.1f} "
+                 f"| {sh} |")
     lab = [x[0] for x in GRADING]
     seqs = {"fillet size 0.2/0.1/0.05 mm at refine 1": ([0.2, 0.1, 0.05], lab[0:3]),
             "refine 0.71/1/1.41, fillet 0.1 mm / refine": ([R2, 1.0, 1 / R2], [lab[7], lab[1], lab[8]])}

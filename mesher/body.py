@@ -58,7 +58,7 @@ class MeshOptions:
     axial_contact_size: float | None = None  # [mm] of the axial levels at the contact; default contact_size
     neighbour_size: float | None = None  # [mm] profile size on the loaded side of the other teeth; default coarse
     axial_coarse_size: float | None = None  # [mm] largest axial level spacing of a graded member; default coarse
-    section_growth: float | None = None  # growth across the loaded tooth (flank -> mid-surface) and along its root; default growth
+    section_growth: float | None = None  # growth across the loaded tooth and along its root; default growth
 
     def __post_init__(self):
         if not (isinstance(self.teeth, int) and self.teeth >= 1):
