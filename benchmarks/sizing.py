@@ -12,6 +12,12 @@ Rows, each solved in its own process (its peak resident memory is the row's memo
   against Hertz's line contact of the whole load;
 * Part 1's twin drive, new design (``stress_part1_new.toml``): its shipped refine with both sizings.
 
+``--grading`` runs the grading study of issue 26, item 2 instead (:data:`GRADING`, docs/benchmarks.md "Third round:
+grading away from the zones"): the crowned pair at refine 1 with the fillet arc size, the axial spacing outside the
+zones, the growth across the tooth and the coarse size varied one at a time, and two reference sequences (the fillet
+size halved at refine 1; refine 0.71/1/1.41 with the fillet 0.1 mm / refine), each with Richardson's value of its
+fillet stress. About 10 min on a quiet 2-core machine; its finest row (485k DOF) needs ~7 GB.
+
 Then the resource estimate against the mesh (no solve) for every shipped stress case and the aligned and
 misaligned (Δγ = 3′) helical pair at refine 0.25, 0.5 and 1: within −10 %/+20 % of the mesh built, or refused
 before meshing when it exceeds the memory limit (``GEARFE_MAX_MEMORY_GB``).
@@ -20,6 +26,7 @@ before meshing when it exceeds the memory limit (``GEARFE_MAX_MEMORY_GB``).
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import os
 import resource
@@ -32,13 +39,13 @@ from pathlib import Path
 from tca.errors import InputError
 
 from benchmarks.convergence import richardson
+from pipelines.cases.kinds import kind_of, read_checked
 from pipelines.cases.reader import CASES_DIR, load_case
 from pipelines.cases.schema import Table
-from pipelines.cases.stress import read_stress_case
 from pipelines.models.stress.model import check_resources, estimate_resources, mesh_scene
 from pipelines.models.stress.run import build_scene, run_stress
 
-__all__ = ["main", "ROWS", "FZG", "run_row", "estimate_sweep"]
+__all__ = ["main", "ROWS", "FZG", "GRADING", "run_row", "estimate_sweep", "grading_study"]
 
 FZG = {"gears.pinion.teeth": 16, "gears.pinion.profile_shift": 0.18, "gears.wheel.profile_shift": 0.17,
        "center_distance_mm": 91.5}
@@ -52,6 +59,21 @@ ROWS = [
     ("FZG spur pair, tca (before)", "stress_spur_pair", {**FZG, "mesh.sizing": "tca"}),
     ("twin new design, loaded (default)", "stress_part1_new", {}),
     ("twin new design, tca (before)", "stress_part1_new", {"mesh.sizing": "tca"}),
+]
+# the grading study (item 2): label, case overrides, SizeRules overrides (pipelines.models.stress.sizing (G1)-(G3));
+# "before" is the grading of main before the third round except the split surface (graded since, mesher.tooth)
+_BEFORE = {"axial_coarse": 1.5, "section_growth": 1.3}  # axial spacing up to the coarse size, growth 1.3 throughout
+GRADING = [
+    ("fillet 0.2 mm, before (159,840 DOF on main)", {"mesh.fillet_size_mm": 0.2}, _BEFORE),
+    ("fillet 0.1 mm", {"mesh.fillet_size_mm": 0.1}, _BEFORE),
+    ("fillet 0.05 mm", {"mesh.fillet_size_mm": 0.05}, _BEFORE),
+    ("fillet 0.1 mm, axial coarse 3 mm (G2)", {"mesh.fillet_size_mm": 0.1}, {"section_growth": 1.3}),
+    ("fillet 0.1 mm, coarse 2 mm", {"mesh.fillet_size_mm": 0.1, "mesh.coarse_size_mm": 2.0},
+     {"axial_coarse": 2.0, "section_growth": 1.3}),
+    ("fillet 0.2 mm, growth 1.5 everywhere", {"mesh.fillet_size_mm": 0.2, "mesh.growth": 1.5}, {"axial_coarse": 1.5}),
+    ("new default: fillet 0.1 mm (G1), axial coarse 3 mm (G2), section growth 1.5 (G3)", {}, {}),
+    ("reference: refine 0.71, fillet 0.1 mm / refine", {"mesh.refine": 1 / R2, "mesh.fillet_size_mm": 0.1}, _BEFORE),
+    ("reference: refine 1.41, fillet 0.1 mm / refine", {"mesh.refine": R2, "mesh.fillet_size_mm": 0.1}, _BEFORE),
 ]
 HELICAL = {"aligned": {}, "misaligned": {"misalignment": {"d_gamma_arcmin": 3.0}}}
 
@@ -68,9 +90,20 @@ def _table(name: str, overrides: dict) -> Table:
     return t
 
 
-def run_row(name: str, overrides: dict) -> dict:
-    """One solved case: DOF, times [s], peak pressure, fillet and von Mises stresses [MPa], shares, Hertz."""
-    case = read_stress_case(_table(name, overrides))
+def _case(name: str, overrides: dict):
+    """A shipped case read as ``gearfe stress`` reads it (its kind's reader: a pair, twin or train stress case)."""
+    t = _table(name, overrides)
+    return read_checked(t, kind_of(t, "stress"), "stress")
+
+
+def run_row(name: str, overrides: dict, rules: dict | None = None) -> dict:
+    """One solved case: DOF, times [s], peak pressure, fillet and von Mises stresses [MPa], shares, Hertz.
+
+    ``rules``: fields of the case's :class:`pipelines.models.stress.sizing.SizeRules` to replace (those without a
+    case key: ``axial_coarse``, ``section_growth``)."""
+    case = _case(name, overrides)
+    if rules:
+        case = dataclasses.replace(case, mesh=dataclasses.replace(case.mesh, **rules))
     t0 = time.perf_counter()
     with tempfile.TemporaryDirectory() as d:
         s = run_stress(case, Path(d)).summary
@@ -91,7 +124,7 @@ def estimate_sweep() -> list[dict]:
               for k in (False, True) for r in (0.25, 0.5, 1.0)]
     rows = []
     for name, ov in cases:
-        case = read_stress_case(_table(name, ov))
+        case = _case(name, ov)
         scene, _ = build_scene(case)
         est = estimate_resources(scene)
         row = {"case": name, "overrides": ov, "estimated_dofs": est.dofs, "estimated_gb": est.memory_gb}
@@ -106,11 +139,41 @@ def estimate_sweep() -> list[dict]:
     return rows
 
 
-def _child(label: str) -> dict:
+def _child(label: str, flag: str = "--row") -> dict:
     """A row solved in a fresh process (its peak memory is the row's)."""
-    p = subprocess.run([sys.executable, "-m", "benchmarks.sizing", "--row", label], capture_output=True, text=True,
+    p = subprocess.run([sys.executable, "-m", "benchmarks.sizing", flag, label], capture_output=True, text=True,
                        check=True)
     return json.loads(p.stdout.strip().splitlines()[-1])
+
+
+def grading_study(out: Path) -> dict:
+    """The rows of :data:`GRADING` (each in its own process), written to ``out/grading.md`` with the Richardson values
+    of the two reference sequences (fillet size 0.2/0.1/0.05 mm at refine 1; refine 0.71/1/1.41)."""
+    rows = {}
+    for label, _, _ in GRADING:
+        rows[label] = _child(label, "--grading-row")
+        print(f"bench_sizing: {label}: {rows[label]['dofs']} DOF, fillet {rows[label]['fillet']:.1f} MPa", flush=True)
+    L = ["# Grading away from the zones (issue 26, item 2): crowned pair at refine 1", "",
+         "| variant | DOF | solve [s] | peak memory [GB] | fillet [MPa] | peak pressure [MPa] | largest pair share |",
+         "|---|---|---|---|---|---|---|"]
+    for label, r in rows.items():
+        sh = ", ".join(f"{v:.3f}" for v in r["max_pair_share"].values())
+        L.append(f"| {label} | {r['dofs']} | {r['solve_s']:.1f} | {r['peak_gb']:.2f} | {r['fillet']:.1f} | {r['p']:.1f} "
+                 f"| {sh} |")
+    lab = [x[0] for x in GRADING]
+    seqs = {"fillet size 0.2/0.1/0.05 mm at refine 1": ([0.2, 0.1, 0.05], lab[0:3]),
+            "refine 0.71/1/1.41, fillet 0.1 mm / refine": ([R2, 1.0, 1 / R2], [lab[7], lab[1], lab[8]])}
+    for name, (h, keys) in seqs.items():
+        try:
+            x = richardson(h, [rows[k]["fillet"] for k in keys])
+            L += ["", f"Richardson ({name}): {x.value:.1f} MPa (order {x.order:.2f}); the new default "
+                  f"{rows[lab[6]]['fillet'] / x.value - 1:+.1%}"]
+        except InputError as e:
+            L += ["", f"Richardson ({name}): none ({e})"]
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "grading.md").write_text("\n".join(L) + "\n")
+    (out / "grading.json").write_text(json.dumps(rows, indent=1, default=str))
+    return rows
 
 
 def write_report(rows: dict, sweep: list[dict], out: Path) -> None:
@@ -146,13 +209,23 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="bench_sizing", description=__doc__.splitlines()[0])
     ap.add_argument("--out", default="out/bench/sizing")
     ap.add_argument("--quick", action="store_true", help="the estimate sweep alone (no solve)")
+    ap.add_argument("--grading", action="store_true", help="the grading study (issue 26 item 2) alone")
     ap.add_argument("--row", help=argparse.SUPPRESS)  # one row in this process (the parent's child)
+    ap.add_argument("--grading-row", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.row is not None:
         _, name, ov = next(r for r in ROWS if r[0] == args.row)
         print(json.dumps(run_row(name, ov)))
         return 0
+    if args.grading_row is not None:
+        _, ov, rules = next(r for r in GRADING if r[0] == args.grading_row)
+        print(json.dumps(run_row("stress_pair_small", {"mesh.refine": 1.0, **ov}, rules)))
+        return 0
     out = Path(args.out)
+    if args.grading:
+        grading_study(out)
+        print(f"wrote {out / 'grading.md'}")
+        return 0
     out.mkdir(parents=True, exist_ok=True)
     rows = {}
     if not args.quick:

@@ -57,16 +57,21 @@ class MeshOptions:
     gap: float | None = None  # [mm] gap F between double-helical members; None: single member
     axial_contact_size: float | None = None  # [mm] of the axial levels at the contact; default contact_size
     neighbour_size: float | None = None  # [mm] profile size on the loaded side of the other teeth; default coarse
+    axial_coarse_size: float | None = None  # [mm] largest axial level spacing of a graded member; default coarse
+    section_growth: float | None = None  # growth across the loaded tooth and along its root; default growth
 
     def __post_init__(self):
         if not (isinstance(self.teeth, int) and self.teeth >= 1):
             raise InputError("mesh.teeth", self.teeth, "an integer >= 1")
-        for k in ("rim_depth", "coarse_size", "contact_size", "fillet_size", "axial_contact_size", "neighbour_size"):
+        for k in ("rim_depth", "coarse_size", "contact_size", "fillet_size", "axial_contact_size", "neighbour_size",
+                  "axial_coarse_size"):
             v = getattr(self, k)
             if v is not None and not (v > 0 and math.isfinite(v)):
                 raise InputError(f"mesh.{k}_mm", v, "> 0 mm")
         if not (1.0 <= self.growth <= 3.0):
             raise InputError("mesh.growth", self.growth, "in [1, 3]")
+        if self.section_growth is not None and not (1.0 <= self.section_growth <= 3.0):
+            raise InputError("mesh.section_growth", self.section_growth, "in [1, 3]")
         if self.gap is not None and not (self.gap >= 0):
             raise InputError("mesh.gap_mm", self.gap, ">= 0 mm")
 
@@ -85,8 +90,12 @@ class MeshOptions:
             raise InputError("mesh.axial_contact_size_mm", axial, f"<= coarse_size_mm {coarse:g}")
         rim = self.rim_depth if self.rim_depth is not None else 3.0 * m
         nb = min(self.neighbour_size, coarse) if self.neighbour_size is not None else coarse
+        ac = self.axial_coarse_size if self.axial_coarse_size is not None else coarse
+        if ac < axial:
+            raise InputError("mesh.axial_coarse_size_mm", ac, f">= axial_contact_size_mm {axial:g}")
         return {"coarse": coarse, "contact": contact, "fillet": fillet, "rim": rim, "growth": self.growth, "axial": axial,
-                "neighbour": nb}
+                "neighbour": nb, "axial_coarse": ac,
+                "section_growth": self.section_growth if self.section_growth is not None else self.growth}
 
 
 @dataclass(frozen=True)
@@ -134,6 +143,7 @@ def plan_tooth(geom: ToothGeometry, sz: dict, z_ref: float, focus: Focus | None,
     """
     g = geom.gear
     c, q = sz["coarse"], sz["growth"]
+    qs = sz.get("section_growth", q)  # across the tooth and along the root: bending only, no contact
     flank_t = {s: geom.flank_table(s, z_ref) for s in SIDES}
     fil_t = {s: geom.fillet_table(s, z_ref) for s in SIDES}
     root_t = {s: geom.root_table(s, z_ref) for s in SIDES}
@@ -181,7 +191,7 @@ def plan_tooth(geom: ToothGeometry, sz: dict, z_ref: float, focus: Focus | None,
     if short:
         n_root = 0
     else:
-        rf = SizeField(c, hf, 0.0, q) if loaded else SizeField(c)
+        rf = SizeField(c, hf, 0.0, qs) if loaded else SizeField(c)
         n_root = max(count(root_t[s][1][-1], rf, 1) for s in SIDES)
     root_u = {}
     for s in SIDES:
@@ -197,7 +207,7 @@ def plan_tooth(geom: ToothGeometry, sz: dict, z_ref: float, focus: Focus | None,
         L = base_l[s]
         if loaded:
             h = sz["contact"] if s == focus.side else sz["fillet"]
-            half[s] = distribute(L, SizeField(c, h, L, q), nmin=2)
+            half[s] = distribute(L, SizeField(c, h, L, qs), nmin=2)
         else:
             half[s] = uniform(count(L, SizeField(c), 2))
     u_tip = {s: flank_t[s][0][-1] for s in SIDES}
@@ -348,9 +358,10 @@ def plan_gear(gear: Gear, opts: MeshOptions = MeshOptions(), centre: int = 0, fo
         if fc is None:
             zf = SizeField(sz["coarse"])
         else:
-            zf = SizeField(sz["coarse"], sz["axial"], z_ref + 0.5 * B, sz["growth"], fc.extent_z)
+            ac = sz.get("axial_coarse", sz["coarse"])
+            zf = SizeField(ac, sz["axial"], z_ref + 0.5 * B, sz["growth"], fc.extent_z)
             if ex:
-                zf = MinField((zf,) + tuple(SizeField(sz["coarse"], sz["axial"], clamp(f.z) + 0.5 * B, sz["growth"],
+                zf = MinField((zf,) + tuple(SizeField(ac, sz["axial"], clamp(f.z) + 0.5 * B, sz["growth"],
                                                       f.extent_z) for _, f in ex))
         z = -0.5 * B + B * distribute(B, zf, nmin=2, pin=fc is not None)
         pinned = set()

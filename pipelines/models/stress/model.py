@@ -146,7 +146,8 @@ def part_options(p) -> MeshOptions:
     """The mesher's options of a scene part (its sizes)."""
     s = p.sizes
     return MeshOptions(teeth=s.teeth, rim_depth=s.rim, coarse_size=s.coarse, contact_size=s.contact, fillet_size=s.fillet,
-                       growth=s.growth, axial_contact_size=s.axial, neighbour_size=s.neighbour)
+                       growth=s.growth, axial_contact_size=s.axial, neighbour_size=s.neighbour,
+                       axial_coarse_size=s.axial_coarse, section_growth=s.section_growth)
 
 
 def estimate_resources(scene: Scene) -> ResourceEstimate:

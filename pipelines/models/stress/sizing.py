@@ -1,4 +1,23 @@
-r"""Element sizes of the loaded flanks from Hertz's contact (the formulas are in :mod:`pipelines.models.stress.scene`)."""
+r"""Element sizes of the loaded flanks from Hertz's contact (the formulas are in :mod:`pipelines.models.stress.scene`),
+and the grading away from the zones (issue 26, item 2).
+
+Grading away from the zones. The fillet stress (the largest nodal principal stress on the loaded teeth's fillets,
+:mod:`pipelines.models.stress.headline`) converges with the element size along the fillet arc :math:`h_f` and the
+thickness of the element layers normal to the fillet; it barely depends on the axial spacing away from the contact
+zone, on the growth of the sizes across the tooth toward its mid-surface, or on the coarse size of the rest
+(docs/benchmarks.md, "Third round: grading away from the zones", measured on the crowned pair). Hence, at refine 1,
+
+.. math::
+    h_f = 0.05\,m \quad (G1), \qquad h_{z,max} = \max(h_{coarse},\ \min(2\,h_{coarse},\ 1.5\,m)) \quad (G2),
+    \qquad q_{section} = \max(1.5, q) \quad (G3)
+
+(G1) the fillet arc of the loaded teeth (was 0.1 m), (G2) the largest axial spacing of a graded member outside its
+zones (was the coarse size; 2 coarse sizes at refine >= 1, never beyond the 1.5 m measured at refine 1, so coarser
+models keep their coarse size: at refine 0.3 a 5 m spacing moved the conventional twin's torque balance past 1e-3),
+(G3) the growth across the loaded tooth (flank and fillet toward the mid-surface) and
+along its root (was q, the growth of the contact grading, 1.3). The layers under the fillet are graded like those
+under the flank (:mod:`mesher.tooth`, Step 3).
+"""
 
 from __future__ import annotations
 
@@ -15,7 +34,8 @@ from tca.geometry.gear import Gear
 from tca.pair.analysis import ContactKind
 
 __all__ = ["HertzContact", "hertz_contact", "SizeRules", "ContactSizes", "contact_sizes", "zone_sizes", "unloaded_sizes",
-           "NEIGHBOUR", "SIZING"]
+           "NEIGHBOUR", "FILLET", "AXIAL_COARSE", "AXIAL_COARSE_MAX", "SECTION_GROWTH",
+           "SIZING"]
 
 # ---------------------------------------------------------------------------------------------- Hertz and sizes
 @dataclass(frozen=True)
@@ -83,6 +103,10 @@ def hertz_contact(lam: tuple, load: float, material: Material, length: float) ->
 
 
 NEIGHBOUR = 0.1  # default profile size on the other teeth's loaded flanks [module] (converged load share, see README)
+FILLET = 0.05  # default size along the loaded teeth's fillets [module] (G1)
+AXIAL_COARSE = 2.0  # largest axial spacing of a graded member outside its zones [coarse sizes] (G2)
+AXIAL_COARSE_MAX = 1.5  # ... and never beyond this [module] unless the coarse size is (G2)
+SECTION_GROWTH = 1.5  # least growth across the loaded tooth and along its root (G3)
 
 
 C_PRIME = 14.0  # [N/(mm um)] single stiffness of a solid spur pair, ISO 6336-1 (order of magnitude of c')
@@ -95,7 +119,7 @@ class SizeRules:
     """Element sizes of the models [mm, or multiples of the module m]; every size is divided by ``refine``.
 
     None: the Hertz-based contact sizes of the module docstring, ``coarse`` = 0.75 m,
-    ``fillet`` = 0.1 m, ``neighbour`` = NEIGHBOUR m (profile size on the loaded side of the
+    ``fillet`` = FILLET m (G1), ``neighbour`` = NEIGHBOUR m (profile size on the loaded side of the
     other teeth, :func:`mesher.body.plan_tooth`; divided by ``refine`` only when ``refine`` > 1),
     rim depth 3 m. Default ``refine`` = 1: the cheapest
     level of ``benchmarks.stress`` with the maximum von Mises stress within 5 % (README,
@@ -115,6 +139,8 @@ class SizeRules:
     neighbour_reach: float | None = None  # [mm] neighbouring pairs closer than this (TCA) get a focus; None: reach()
     sizing: str = "loaded"  # 'loaded': zones from the loaded estimate; 'tca': from the unloaded TCA (before issue 26)
     remesh: bool = False  # remesh once when the FE loads a pair the estimate left unloaded (pipelines.models.stress.run)
+    axial_coarse: float | None = None  # [mm] largest axial spacing outside the zones (before refine); None: (G2)
+    section_growth: float | None = None  # growth across the loaded tooth and along its root; None: (G3)
 
     def __post_init__(self):
         if not (0.1 <= self.refine <= 10.0):
@@ -135,6 +161,10 @@ class SizeRules:
             raise InputError("mesh.sizing", self.sizing, "one of " + ", ".join(repr(x) for x in SIZING))
         if not isinstance(self.remesh, bool):
             raise InputError("mesh.remesh", self.remesh, "true or false")
+        if self.axial_coarse is not None and not (self.axial_coarse > 0 and math.isfinite(self.axial_coarse)):
+            raise InputError("mesh.axial_coarse_size_mm", self.axial_coarse, "> 0 mm")
+        if self.section_growth is not None and not (1.05 <= self.section_growth <= 3.0):
+            raise InputError("mesh.section_growth", self.section_growth, "in [1.05, 3]")
 
     def reach(self, load: float, face_width: float) -> float:
         r"""Separation [mm] below which a neighbouring pair of teeth is meshed like the loaded one.
@@ -164,6 +194,8 @@ class ContactSizes:
     extent_u: float  # zone half-length along the profile
     extent_z: float  # zone half-length along the axis
     teeth: int = 3
+    axial_coarse: float | None = None  # largest axial spacing outside the zones (G2); None: coarse
+    section_growth: float | None = None  # growth across the loaded tooth and along its root (G3); None: growth
 
 
 def contact_sizes(rules: SizeRules, gear: Gear, hz: HertzContact, angle: float, kind: int,
@@ -214,12 +246,15 @@ def _sizes(rules: SizeRules, m: float, contact: float, axial: float, ext_u: floa
     coarse = _coarse(rules, m)
     contact = min(max(contact, 0.005 * m), coarse * r) / r
     axial = min(max(axial, contact * r), coarse * r) / r
-    fillet = min((rules.fillet if rules.fillet is not None else 0.1 * m) / r, coarse)
+    fillet = min((rules.fillet if rules.fillet is not None else FILLET * m) / r, coarse)
     # a resolution of the flank geometry (facet sag against the elastic approach), not of a stress gradient:
     # coarser models (refine < 1) keep it, finer ones refine it too
     neighbour = min((rules.neighbour if rules.neighbour is not None else NEIGHBOUR * m) / max(r, 1.0), coarse)
     return ContactSizes(coarse, contact, axial, fillet, neighbour, rules.rim_depth if rules.rim_depth is not None else 3.0 * m,
-                        rules.growth, ext_u, ext_z, rules.teeth)
+                        rules.growth, ext_u, ext_z, rules.teeth,
+                        max(rules.axial_coarse / r if rules.axial_coarse is not None else
+                            max(coarse, min(AXIAL_COARSE * coarse, AXIAL_COARSE_MAX * m)), axial),
+                        rules.section_growth if rules.section_growth is not None else max(SECTION_GROWTH, rules.growth))
 
 
 def zone_sizes(rules: SizeRules, gear: Gear, line: bool, zones: tuple, ext_u: float, ext_z: float) -> ContactSizes:
