@@ -45,8 +45,10 @@ from __future__ import annotations
 import math
 import os
 import shutil
+import signal
 import subprocess
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -327,6 +329,27 @@ def _stop(proc: subprocess.Popen, grace: float = 5.0) -> None:
         pass
 
 
+@contextmanager
+def _signals_held():
+    """SIGINT / SIGTERM that arrive while ccx is being started are recorded, not raised (yields the list).
+
+    Raised inside ``subprocess.Popen`` (after the fork) or before the caller's ``try``, they would leave a
+    ccx running that nobody stops; the caller raises them again once ``proc`` is under its ``try``. Python
+    handlers only (the main thread): the OS signal mask, which ccx would inherit, is not touched."""
+    held: list[int] = []
+    old = {}
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        try:
+            old[sig] = signal.signal(sig, lambda signum, frame: held.append(signum))
+        except ValueError:  # not the main thread: signals are not delivered here anyway
+            break
+    try:
+        yield held
+    finally:
+        for sig, h in old.items():
+            signal.signal(sig, h)
+
+
 def run_ccx(job: str | Path, threads: int = 1, timeout: float = 3600.0, progress=None) -> CcxRun:
     """Run ``ccx -i <job>`` in the job's folder (log in ``<job>.log``); raise GearfeError when it fails.
 
@@ -343,10 +366,15 @@ def run_ccx(job: str | Path, threads: int = 1, timeout: float = 3600.0, progress
     logfile = job.with_suffix(".log")
     t0 = time.perf_counter()
     with open(logfile, "w") as fh:
-        proc = subprocess.Popen([exe, "-i", job.stem], cwd=job.parent, stdout=fh, stderr=subprocess.STDOUT, env=env)
+        proc = None
         peak_kb = 0
         next_report = PROGRESS_S
         try:
+            with _signals_held() as held:
+                proc = subprocess.Popen([exe, "-i", job.stem], cwd=job.parent, stdout=fh, stderr=subprocess.STDOUT,
+                                        env=env)
+            for sig in held:  # a signal of the start-up: now ccx is stopped below
+                signal.raise_signal(sig)
             while True:
                 pid, status, ru = os.wait4(proc.pid, os.WNOHANG)
                 if pid:
@@ -361,7 +389,8 @@ def run_ccx(job: str | Path, threads: int = 1, timeout: float = 3600.0, progress
                     progress(wall, peak_kb / 1024.0)
                 time.sleep(0.05)
         except BaseException:
-            _stop(proc)
+            if proc is not None:
+                _stop(proc)
             raise
     wall = time.perf_counter() - t0
     log = logfile.read_text(errors="replace")

@@ -48,7 +48,8 @@ the error names the grid point); a grid has at most ``MAX_GRID_POINTS`` (10^5) p
 ``--scheduler`` is probed (TCP, 3 s) before anything else.
 Each point runs in ``DIR/cases/<id>/`` (written under a temporary name and renamed when finished),
 so an interrupted sweep resumes where it stopped and never leaves a half-written case; finished
-points are not recomputed. ``DIR/results.csv`` gathers the axes and the scalar results of all
+points are not recomputed (they are read in this process; a cluster is started only for unfinished
+points). ``DIR/results.csv`` gathers the axes and the scalar results of all
 points (with ``status``; stress: ``phi1_deg``, ``te_unloaded_arcsec``, ``elastic_rotation_arcsec``,
 ``te_loaded_arcsec``, ``tca_second_pair_gap_arcsec``, maximum stresses, contact force, torque
 balance errors, ``dofs``, stage times and ``share.<interface>.member.<m>`` /
@@ -324,16 +325,22 @@ def handle(args) -> int:
         shutil.rmtree(stale, ignore_errors=True)
     atomic_write_text(out / "sweep.json", json.dumps(
         {"task": task, "axes": keys, "points": [{"id": p["id"], **p["values"]} for p in points]}, indent=2))
-    rows = []
+    # points finished by an earlier run are read here; only the others are computed (no cluster is started when
+    # every point is finished)
+    finished = {p["id"] for p in points if (out / "cases" / p["id"] / "summary.json").is_file()}
+    rows = [run_point(task, p, str(out.resolve())) for p in points if p["id"] in finished]
+    todo = [p for p in points if p["id"] not in finished]
     t0 = time.perf_counter()
-    if args.workers == 0 and not args.scheduler:  # in-process, no Dask (tests, debugging)
-        _progress(0, len(points), t0)
-        for i, p in enumerate(points, 1):
+    if not todo:
+        pass
+    elif args.workers == 0 and not args.scheduler:  # in-process, no Dask (tests, debugging)
+        _progress(0, len(todo), t0)
+        for i, p in enumerate(todo, 1):
             rows.append(run_point(task, p, str(out.resolve())))
-            _progress(i, len(points), t0)
+            _progress(i, len(todo), t0)
         sys.stderr.write("\n")
     else:
-        rows = _run_dask(task, points, out, args, t0)
+        rows += _run_dask(task, todo, out, args, t0)
     order = {p["id"]: i for i, p in enumerate(points)}
     rows.sort(key=lambda r: order[r["id"]])
     cols = ["id", *keys]

@@ -39,6 +39,7 @@ import numpy as np
 from tca.contact.ellipse import contact_ellipse
 from tca.errors import GeometryError
 from tca.pair.gear_pair import GearPair
+from tca.pair.memo import Memo
 from tca.pair.bounded import bounded_pass
 from tca.pair.reference import solve_reference_pair
 from tca.pair.relief import relief_pass
@@ -60,7 +61,14 @@ __all__ = ["TCAOptions", "ContactKind", "ReferencePairSolution", "PairTCAResult"
 
 # ---------------------------------------------------------------------------------------------
 def run_pair_tca(pair: GearPair, opts: TCAOptions = TCAOptions()) -> PairTCAResult:
-    """TCA of a gear pair over opts.cycles cycles of meshing; see the module docstring."""
+    """TCA of a gear pair over opts.cycles cycles of meshing; see the module docstring.
+
+    Computed once per process for a pair and options of equal value (:mod:`tca.pair.memo`: the last
+    eight results are kept, read-only; ``elapsed`` is the time of the computation)."""
+    return _MEMO(pair, opts)
+
+
+def _compute_pair_tca(pair: GearPair, opts: TCAOptions) -> PairTCAResult:
     t0 = time.perf_counter()
     f1, f2 = pair.flanks()
     ref = solve_reference_pair(pair, opts, bounded="none")
@@ -162,3 +170,6 @@ def run_pair_tca(pair: GearPair, opts: TCAOptions = TCAOptions()) -> PairTCAResu
 def _stack_points(pts):
     """Concatenate SurfacePoints records of single points."""
     return type(pts[0])(*(np.concatenate(f) for f in zip(*pts)))
+
+
+_MEMO = Memo(_compute_pair_tca, size=8)
