@@ -110,7 +110,9 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
     t["contact_setup_s"] = time.perf_counter() - t1
 
     t1 = time.perf_counter()
-    sysm = schur_system(A, C, model.solver.solver, definite=(k == 0))
+    # only A_RR = K_r without the free rigid DOFs is factored: SPD (every body held), so Cholesky applies;
+    # the gap rows' zero diagonal lies in the Schur block C (mtype 2 instead of -2: 2-10 % less factor CPU time)
+    sysm = schur_system(A, C, model.solver.solver, definite=True)
     t["factor_s"] = time.perf_counter() - t1
 
     state = {}

@@ -47,7 +47,7 @@ def choose_solver(name: str) -> str:
 
 @dataclass(eq=False)
 class SchurSystem:
-    """A factored SPD matrix with its dense Schur complement on rows ``C``."""
+    """A factored symmetric matrix with its dense Schur complement on rows ``C``."""
 
     method: str
     C: np.ndarray
@@ -61,7 +61,11 @@ class SchurSystem:
 
 
 def schur_system(K: sp.spmatrix, C: np.ndarray, method: str = "auto", definite: bool = True) -> SchurSystem:
-    """Factor symmetric K once, with the dense Schur complement on sorted rows C (may be empty)."""
+    """Factor symmetric K once, with the dense Schur complement on sorted rows C (may be empty).
+
+    ``definite``: K_RR (the rows outside C, the only block that is factored) is positive definite, so
+    PARDISO's Cholesky (mtype 2) applies even when the C block is not (the zero diagonal of gap rows);
+    otherwise the symmetric indefinite factorization (mtype -2, Bunch-Kaufman with pivot perturbation)."""
     method = choose_solver(method)
     C = np.asarray(C, np.int64)
     t0 = time.perf_counter()
