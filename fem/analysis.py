@@ -102,8 +102,10 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
     A = Kr
     if k:
         Gr = (cs.G[cand] @ T).tocsr()
-        zero = sp.csr_matrix((np.zeros(k), (np.arange(k), np.arange(k))), shape=(k, k))
-        A = sp.bmat([[Kr, Gr.T], [Gr, zero]], format="csr")
+        Gr.sort_indices()
+        zero = sp.csr_matrix((np.zeros(k), np.arange(k), np.arange(k + 1)), shape=(k, k))
+        # CSR stacking (no COO round trip as in bmat); rows stay sorted and duplicate-free (canonical)
+        A = sp.vstack([sp.hstack([Kr, Gr.T.tocsr()], format="csr"), sp.hstack([Gr, zero], format="csr")], format="csr")
     # Schur rows: the free rigid DOFs, then the gap rows (bordering)
     C = np.concatenate([F, n_r + np.arange(k)])
     iF, ig = np.arange(len(F)), len(F) + np.arange(k)
