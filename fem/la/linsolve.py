@@ -12,8 +12,9 @@ follows by one back substitution. A_RR must be nonsingular: every body is held w
 rigid DOFs (in C) are clamped.
 
 Backends, chosen by measurement (MEASURED.md and ``benchmarks.fem``):
-- ``pardiso``: MKL PARDISO (SPD, or symmetric indefinite when C holds gap rows), Schur mode:
-  one factorization, a forward and a backward substitution.
+- ``pardiso``: MKL PARDISO, Schur mode: one factorization of A_RR (Cholesky when A_RR is positive
+  definite, also when A_CC is not, e.g. the zero diagonal of gap rows; else symmetric indefinite),
+  a forward and a backward substitution.
 - ``superlu``: pure scipy fallback; factors A_RR with SuperLU and forms S with |C| solves.
 ``linear_solve`` also offers ``amg`` (pyamg smoothed aggregation + rigid-body modes, CG) for
 solves without contact.
