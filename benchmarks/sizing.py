@@ -100,10 +100,13 @@ def run_row(name: str, overrides: dict, rules: dict | None = None) -> dict:
     """One solved case: DOF, times [s], peak pressure, fillet and von Mises stresses [MPa], shares, Hertz.
 
     ``rules``: fields of the case's :class:`pipelines.models.stress.sizing.SizeRules` to replace (those without a
-    case key: ``axial_coarse``, ``section_growth``)."""
+    case key: ``axial_coarse``, ``section_growth``). Also the FE phases' times (``fe_timings_s``: assembly,
+    reduction, contact set-up, factor, solve, contact, recovery) and the 1-minute load average before and after (a
+    timing on a busy machine says so)."""
     case = _case(name, overrides)
     if rules:
         case = dataclasses.replace(case, mesh=dataclasses.replace(case.mesh, **rules))
+    load0 = os.getloadavg()[0]
     t0 = time.perf_counter()
     with tempfile.TemporaryDirectory() as d:
         s = run_stress(case, Path(d)).summary
@@ -114,7 +117,8 @@ def run_row(name: str, overrides: dict, rules: dict | None = None) -> dict:
     return {"dofs": s["dofs"], "total_s": time.perf_counter() - t0, "tca_s": s["tca_s"], "mesh_s": s["mesh_s"],
             "solve_s": s["solve_s"], "p": s["max_contact_pressure_mpa"], "fillet": s["max_fillet_stress_mpa"],
             "von_mises": s["max_von_mises_mpa"], "max_pair_share": shares, "member_share": members, "hertz_p0": max(hz),
-            "warnings": s["warnings"], "peak_gb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e6}
+            "warnings": s["warnings"], "peak_gb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e6,
+            "fe_timings_s": s["fe"]["timings_s"], "load_average": (load0, os.getloadavg()[0])}
 
 
 def estimate_sweep() -> list[dict]:

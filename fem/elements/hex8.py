@@ -43,6 +43,8 @@ Local node order is VTK's (= C3D8's), DOFs interleaved per node: (u_x, u_y, u_z)
 
 from __future__ import annotations
 
+import os
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -56,6 +58,7 @@ __all__ = [
     "isotropic_stiffness",
     "ElementMatrices",
     "hex8_matrices",
+    "kernel_threads",
 ]
 
 # scikit-fem local node k of ElementHex1 sits at reference point doflocs[k]; VTK node P[k] sits there.
@@ -161,13 +164,30 @@ class ElementMatrices:
     geometry: HexGeometry
 
 
-def hex8_matrices(points, cells, lam, mu, incompatible: bool = True, chunk: int = 1000) -> ElementMatrices:
-    """Stiffness of all cells (C3D8 or C3D8I-like with condensed modes), chunked to bound memory."""
+def kernel_threads() -> int:
+    """Threads for the chunked element kernels: the BLAS thread limit in force (threadpoolctl), at most the cores."""
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+    try:
+        from threadpoolctl import threadpool_info
+    except ImportError:  # pragma: no cover - optional dependency
+        return cores
+    limits = [int(i["num_threads"]) for i in threadpool_info() if i.get("user_api") == "blas"]
+    return max(1, min([cores, *limits]))
+
+
+def hex8_matrices(points, cells, lam, mu, incompatible: bool = True, chunk: int = 1000,
+                  threads: int | None = None) -> ElementMatrices:
+    """Stiffness of all cells (C3D8 or C3D8I-like with condensed modes), chunked to bound memory.
+
+    The chunks are independent (each writes its own rows of the outputs) and numpy releases the GIL in
+    their batched products and solves, so they run on ``threads`` threads (default ``kernel_threads()``);
+    the result does not depend on the number of threads (same chunks, same operations)."""
     geo = hex_geometry(points, cells, incompatible)
     m = len(cells)
     Ke = np.empty((m, 24, 24))
     X = np.empty((m, 9, 24)) if incompatible else None
-    for s in range(0, m, chunk):
+
+    def run(s: int) -> None:
         sl = slice(s, min(s + chunk, m))
         K = isotropic_stiffness(geo.grads[sl], geo.dx[sl], lam[sl], mu[sl])
         if incompatible:
@@ -178,4 +198,13 @@ def hex8_matrices(points, cells, lam, mu, incompatible: bool = True, chunk: int 
             X[sl] = Xs
         else:
             Ke[sl] = K  # R^T R: exactly symmetric
+
+    starts = range(0, m, chunk)
+    threads = kernel_threads() if threads is None else int(threads)
+    if threads > 1 and len(starts) > 1:
+        with ThreadPoolExecutor(max_workers=threads) as pool:
+            list(pool.map(run, starts))
+    else:
+        for s in starts:
+            run(s)
     return ElementMatrices(stiffness=Ke, condensation=X, geometry=geo)

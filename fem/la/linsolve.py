@@ -12,8 +12,9 @@ follows by one back substitution. A_RR must be nonsingular: every body is held w
 rigid DOFs (in C) are clamped.
 
 Backends, chosen by measurement (MEASURED.md and ``benchmarks.fem``):
-- ``pardiso``: MKL PARDISO (SPD, or symmetric indefinite when C holds gap rows), Schur mode:
-  one factorization, a forward and a backward substitution.
+- ``pardiso``: MKL PARDISO, Schur mode: one factorization of A_RR (Cholesky when A_RR is positive
+  definite, also when A_CC is not, e.g. the zero diagonal of gap rows; else symmetric indefinite),
+  a forward and a backward substitution.
 - ``superlu``: pure scipy fallback; factors A_RR with SuperLU and forms S with |C| solves.
 ``linear_solve`` also offers ``amg`` (pyamg smoothed aggregation + rigid-body modes, CG) for
 solves without contact.
@@ -47,7 +48,7 @@ def choose_solver(name: str) -> str:
 
 @dataclass(eq=False)
 class SchurSystem:
-    """A factored SPD matrix with its dense Schur complement on rows ``C``."""
+    """A factored symmetric matrix with its dense Schur complement on rows ``C``."""
 
     method: str
     C: np.ndarray
@@ -61,7 +62,11 @@ class SchurSystem:
 
 
 def schur_system(K: sp.spmatrix, C: np.ndarray, method: str = "auto", definite: bool = True) -> SchurSystem:
-    """Factor symmetric K once, with the dense Schur complement on sorted rows C (may be empty)."""
+    """Factor symmetric K once, with the dense Schur complement on sorted rows C (may be empty).
+
+    ``definite``: K_RR (the rows outside C, the only block that is factored) is positive definite, so
+    PARDISO's Cholesky (mtype 2) applies even when the C block is not (the zero diagonal of gap rows);
+    otherwise the symmetric indefinite factorization (mtype -2, Bunch-Kaufman with pivot perturbation)."""
     method = choose_solver(method)
     C = np.asarray(C, np.int64)
     t0 = time.perf_counter()

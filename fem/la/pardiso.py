@@ -25,7 +25,7 @@ import scipy.sparse as sp
 
 from fem.errors import FEError
 
-__all__ = ["available", "Pardiso"]
+__all__ = ["available", "upper_csr", "Pardiso"]
 
 _P = ctypes.POINTER
 _I32 = ctypes.c_int32
@@ -60,6 +60,35 @@ def _load():
 _PARDISO = _load()
 
 
+def upper_csr(K: sp.spmatrix) -> sp.csr_matrix:
+    """The upper triangle of symmetric K as sorted CSR with every diagonal entry stored (zeros included).
+
+    PARDISO wants the diagonal of every row, also the zero diagonal of the gap rows of a bordered
+    matrix. A canonical CSR matrix that already stores its diagonal is cut by a mask on its column
+    indices (no COO round trip); otherwise the missing diagonal entries are added."""
+    K = sp.csr_matrix(K)
+    n = K.shape[0]
+    if not K.has_canonical_format:
+        K = K.copy()
+        K.sum_duplicates()  # also sorts the indices
+    row = np.repeat(np.arange(n, dtype=K.indices.dtype), np.diff(K.indptr))
+    keep = K.indices >= row
+    counts = np.bincount(row[keep], minlength=n)
+    indptr = np.zeros(n + 1, np.int64)
+    np.cumsum(counts, out=indptr[1:])
+    U = sp.csr_matrix((K.data[keep], K.indices[keep], indptr), shape=K.shape)
+    first = U.indices[indptr[:-1][counts > 0]]
+    if np.count_nonzero(counts) == n and np.array_equal(first, np.flatnonzero(counts)):
+        U.has_sorted_indices = True
+        return U  # sorted rows whose first entry is the diagonal: all diagonal entries stored
+    C = U.tocoo()
+    U = sp.coo_matrix((np.concatenate([C.data, np.zeros(n)]), (np.concatenate([C.row, np.arange(n)]),
+                       np.concatenate([C.col, np.arange(n)]))), shape=K.shape).tocsr()
+    U.sum_duplicates()
+    U.sort_indices()
+    return U
+
+
 def available() -> bool:
     """True when MKL PARDISO could be loaded."""
     return _PARDISO is not None
@@ -71,13 +100,7 @@ class Pardiso:
     def __init__(self, K: sp.spmatrix, schur_rows: np.ndarray | None = None, mtype: int = 2):
         if _PARDISO is None:  # pragma: no cover
             raise FEError("MKL PARDISO is not available (pypardiso/mkl could not be loaded)")
-        U = sp.triu(K, format="coo")
-        n = U.shape[0]
-        # every diagonal entry must be stored, zeros included (the gap rows of a bordered matrix)
-        U = sp.coo_matrix((np.concatenate([U.data, np.zeros(n)]), (np.concatenate([U.row, np.arange(n)]),
-                           np.concatenate([U.col, np.arange(n)]))), shape=U.shape).tocsr()
-        U.sum_duplicates()
-        U.sort_indices()
+        U = upper_csr(K)
         self.mtype = int(mtype)
         self.n = U.shape[0]
         self._a = np.ascontiguousarray(U.data, dtype=np.float64)

@@ -51,3 +51,18 @@ def test_stiffness_equals_the_split_form(distorted):
          + mu[:, None, None, None, None] * M[:, :, None, :, None] * np.eye(3)[None, None, :, None, :])
     K = K.reshape(m, 3 * nf, 3 * nf)
     np.testing.assert_allclose(isotropic_stiffness(geo.grads, geo.dx, lam, mu), K, rtol=0, atol=1e-12 * np.abs(K).max())
+
+
+@pytest.mark.parametrize("incompatible", [True, False])
+def test_threaded_chunks_equal_serial(distorted, incompatible):
+    """The element kernels on two threads give the serial matrices bit for bit (same chunks, same operations)."""
+    from fem.elements.hex8 import hex8_matrices, kernel_threads
+
+    pts, cells = distorted
+    lam, mu = np.full(len(cells), 1.2e5), np.full(len(cells), 8e4)
+    one = hex8_matrices(pts, cells, lam, mu, incompatible, chunk=7, threads=1)
+    two = hex8_matrices(pts, cells, lam, mu, incompatible, chunk=7, threads=2)
+    np.testing.assert_array_equal(one.stiffness, two.stiffness)
+    if incompatible:
+        np.testing.assert_array_equal(one.condensation, two.condensation)
+    assert kernel_threads() >= 1

@@ -37,6 +37,48 @@ def test_pardiso_schur_against_dense(definite):
 
 
 @needs_mkl
+@pytest.mark.parametrize("definite", [True, False])
+def test_pardiso_schur_of_bordered_matrix(definite):
+    """Stiffness bordered by constraint rows with a zero diagonal, the rows in C: Cholesky of K_RR (mtype 2)
+    and the indefinite factorization give the dense Schur complement S = -G K^-1 G^T and the solution."""
+    K, rng = _spd()
+    G = sp.random(20, K.shape[0], density=0.05, random_state=4, format="csr")
+    A = sp.bmat([[K, G.T], [G, sp.csr_matrix((20, 20))]], format="csr")  # no stored diagonal in the gap rows
+    C = K.shape[0] + np.arange(20)
+    Gd = G.toarray()
+    S_ref = -Gd @ np.linalg.solve(K.toarray(), Gd.T)
+    sysm = schur_system(A, C, "pardiso", definite=definite)
+    assert np.abs(sysm.schur - S_ref).max() < 1e-10 * np.abs(S_ref).max()
+    f = rng.standard_normal(A.shape[0])
+    u = sysm.solve(f, lambda fc: np.linalg.solve(sysm.schur, fc))
+    assert np.abs(A @ u - f).max() < 1e-9 * np.abs(f).max()
+
+
+@pytest.mark.parametrize("case", ["canonical", "no diagonal", "unsorted"])
+def test_upper_csr_equals_triu_with_diagonal(case):
+    """fem.la.pardiso.upper_csr: the upper triangle, sorted, with every diagonal entry stored (zeros included)."""
+    K, _ = _spd(60, seed=2)
+    if case == "no diagonal":
+        K = K.tolil()
+        K.setdiag(0.0)
+        K = K.tocsr()
+        K.eliminate_zeros()
+    if case == "unsorted":
+        K = K.tocsc().T.tocsr()  # same matrix (symmetric), built without sorting
+        K.indices, K.data = K.indices.copy(), K.data.copy()
+        for i in range(K.shape[0]):  # reverse each row
+            s = slice(K.indptr[i], K.indptr[i + 1])
+            K.indices[s], K.data[s] = K.indices[s][::-1], K.data[s][::-1]
+        K.has_sorted_indices = False
+    U = pardiso.upper_csr(K)
+    ref = (sp.triu(K) + sp.eye(K.shape[0]) * 0.0).toarray()
+    np.testing.assert_array_equal(U.toarray(), ref)
+    assert U.has_sorted_indices and np.all(np.diff(U.indices[U.indptr[0]:U.indptr[1]]) > 0)
+    first = U.indices[U.indptr[:-1]]
+    np.testing.assert_array_equal(first, np.arange(K.shape[0]))  # the diagonal is stored, first in each row
+
+
+@needs_mkl
 def test_superlu_fallback_matches_pardiso():
     mesh, model, _ = hertz_line(elements_per_halfwidth=5.0, setup=ModelSetup(solver=SolverOptions("pardiso")))
     r1 = solve(mesh, model)
