@@ -143,7 +143,7 @@ def plan_tooth(geom: ToothGeometry, sz: dict, z_ref: float, focus: Focus | None,
     """
     g = geom.gear
     c, q = sz["coarse"], sz["growth"]
-    qs = sz.get("section_growth", q)  # across the tooth and along the root: bending only, no contact
+    qs = sz["section_growth"]  # across the tooth and along the root: bending only, no contact
     flank_t = {s: geom.flank_table(s, z_ref) for s in SIDES}
     fil_t = {s: geom.fillet_table(s, z_ref) for s in SIDES}
     root_t = {s: geom.root_table(s, z_ref) for s in SIDES}
@@ -358,7 +358,7 @@ def plan_gear(gear: Gear, opts: MeshOptions = MeshOptions(), centre: int = 0, fo
         if fc is None:
             zf = SizeField(sz["coarse"])
         else:
-            ac = sz.get("axial_coarse", sz["coarse"])
+            ac = sz["axial_coarse"]
             zf = SizeField(ac, sz["axial"], z_ref + 0.5 * B, sz["growth"], fc.extent_z)
             if ex:
                 zf = MinField((zf,) + tuple(SizeField(ac, sz["axial"], clamp(f.z) + 0.5 * B, sz["growth"],

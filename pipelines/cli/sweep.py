@@ -331,15 +331,13 @@ def handle(args) -> int:
     rows = [run_point(task, p, str(out.resolve())) for p in points if p["id"] in finished]
     todo = [p for p in points if p["id"] not in finished]
     t0 = time.perf_counter()
-    if not todo:
-        pass
-    elif args.workers == 0 and not args.scheduler:  # in-process, no Dask (tests, debugging)
+    if todo and args.workers == 0 and not args.scheduler:  # in-process, no Dask (tests, debugging)
         _progress(0, len(todo), t0)
         for i, p in enumerate(todo, 1):
             rows.append(run_point(task, p, str(out.resolve())))
             _progress(i, len(todo), t0)
         sys.stderr.write("\n")
-    else:
+    elif todo:
         rows += _run_dask(task, todo, out, args, t0)
     order = {p["id"]: i for i, p in enumerate(points)}
     rows.sort(key=lambda r: order[r["id"]])
