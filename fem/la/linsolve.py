@@ -61,17 +61,20 @@ class SchurSystem:
         return self._solve(f, solve_c)
 
 
-def schur_system(K: sp.spmatrix, C: np.ndarray, method: str = "auto", definite: bool = True) -> SchurSystem:
+def schur_system(K: sp.spmatrix, C: np.ndarray, method: str = "auto", definite: bool = True,
+                 upper: bool = False) -> SchurSystem:
     """Factor symmetric K once, with the dense Schur complement on sorted rows C (may be empty).
 
     ``definite``: K_RR (the rows outside C, the only block that is factored) is positive definite, so
     PARDISO's Cholesky (mtype 2) applies even when the C block is not (the zero diagonal of gap rows);
-    otherwise the symmetric indefinite factorization (mtype -2, Bunch-Kaufman with pivot perturbation)."""
+    otherwise the symmetric indefinite factorization (mtype -2, Bunch-Kaufman with pivot perturbation).
+    ``upper``: K holds only the upper triangle, in the form of :func:`fem.la.pardiso.upper_csr` (every row
+    starting at its stored diagonal entry), which PARDISO takes as it is (no copy of the whole matrix)."""
     method = choose_solver(method)
     C = np.asarray(C, np.int64)
     t0 = time.perf_counter()
     if method == "pardiso":
-        fac = pardiso.Pardiso(K, C if len(C) else None, mtype=2 if definite else -2)
+        fac = pardiso.Pardiso(K, C if len(C) else None, mtype=2 if definite else -2, upper=upper)
         if len(C):
             def solve(f, solve_c):
                 y = fac.forward(f)
@@ -85,6 +88,8 @@ def schur_system(K: sp.spmatrix, C: np.ndarray, method: str = "auto", definite: 
     if method != "superlu":
         raise FEInputError("solver.solver", method, "'pardiso', 'superlu' or 'auto'")
     K = sp.csr_matrix(K)
+    if upper:
+        K = (K + sp.triu(K, 1, format="csr").T).tocsr()
     R = np.setdiff1d(np.arange(K.shape[0]), C)
     KRR = K[R][:, R].tocsc()
     try:

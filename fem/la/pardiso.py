@@ -89,6 +89,25 @@ def upper_csr(K: sp.spmatrix) -> sp.csr_matrix:
     return U
 
 
+def _checked_upper(U: sp.spmatrix) -> sp.csr_matrix:
+    """U itself when it is an upper triangle in PARDISO's form (CSR, rows sorted and duplicate-free, each row
+    starting at its diagonal entry); FEError otherwise."""
+    if not (sp.issparse(U) and U.format == "csr"):
+        raise FEError("an upper-triangle matrix for PARDISO must be CSR")
+    n = U.shape[0]
+    starts = U.indptr[:-1]
+    ok = U.shape[1] == n and bool(np.all(np.diff(U.indptr) > 0)) and np.array_equal(U.indices[starts], np.arange(n))
+    if ok:
+        inc = np.diff(U.indices) > 0
+        inc[starts[1:] - 1] = True  # a row's first index may be below the previous row's last
+        ok = bool(inc.all())
+    if not ok:
+        raise FEError("the matrix given as an upper triangle is not one: every row must start at its diagonal entry "
+                      "and have increasing column indices")
+    U.has_sorted_indices = True
+    return U
+
+
 def available() -> bool:
     """True when MKL PARDISO could be loaded."""
     return _PARDISO is not None
@@ -97,10 +116,12 @@ def available() -> bool:
 class Pardiso:
     """PARDISO factorization of a symmetric matrix (mtype 2: SPD, -2: indefinite), optional Schur rows."""
 
-    def __init__(self, K: sp.spmatrix, schur_rows: np.ndarray | None = None, mtype: int = 2):
+    def __init__(self, K: sp.spmatrix, schur_rows: np.ndarray | None = None, mtype: int = 2, upper: bool = False):
+        """``upper``: K already holds only the upper triangle (CSR, sorted rows, each starting at its diagonal
+        entry), as :func:`upper_csr` gives; it is checked, not cut again."""
         if _PARDISO is None:  # pragma: no cover
             raise FEError("MKL PARDISO is not available (pypardiso/mkl could not be loaded)")
-        U = upper_csr(K)
+        U = _checked_upper(K) if upper else upper_csr(K)
         self.mtype = int(mtype)
         self.n = U.shape[0]
         self._a = np.ascontiguousarray(U.data, dtype=np.float64)

@@ -6,6 +6,7 @@ import pytest
 import scipy.sparse as sp
 
 from fem import SolverOptions, solve
+from fem.errors import FEError
 from fem.la import pardiso
 from fem.la.linsolve import linear_solve, rigid_body_modes, schur_system
 from fem.verification import ModelSetup, cantilever, hertz_line
@@ -52,6 +53,29 @@ def test_pardiso_schur_of_bordered_matrix(definite):
     f = rng.standard_normal(A.shape[0])
     u = sysm.solve(f, lambda fc: np.linalg.solve(sysm.schur, fc))
     assert np.abs(A @ u - f).max() < 1e-9 * np.abs(f).max()
+
+
+@pytest.mark.parametrize("method", [pytest.param("pardiso", marks=needs_mkl), "superlu"])
+def test_schur_system_of_an_upper_triangle(method):
+    """schur_system(..., upper=True): the bordered matrix given by its upper triangle (as fem.analysis builds it)
+    gives the Schur complement and the solution of the whole symmetric matrix."""
+    K, rng = _spd()
+    G = sp.random(20, K.shape[0], density=0.05, random_state=4, format="csr")
+    A = sp.bmat([[K, G.T], [G, sp.csr_matrix((20, 20))]], format="csr")
+    C = K.shape[0] + np.arange(20)
+    full = schur_system(A, C, method)
+    up = schur_system(pardiso.upper_csr(A), C, method, upper=True)
+    assert np.abs(up.schur - full.schur).max() <= 1e-12 * np.abs(full.schur).max()
+    f = rng.standard_normal(A.shape[0])
+    u = up.solve(f, lambda fc: np.linalg.solve(up.schur, fc))
+    assert np.abs(A @ u - f).max() < 1e-9 * np.abs(f).max()
+
+
+@needs_mkl
+def test_pardiso_refuses_a_matrix_given_as_upper_that_is_not():
+    K, _ = _spd(40, seed=3)
+    with pytest.raises(FEError, match="not one"):
+        pardiso.Pardiso(K, None, upper=True)  # the whole symmetric matrix: rows do not start at the diagonal
 
 
 @pytest.mark.parametrize("case", ["canonical", "no diagonal", "unsorted"])
