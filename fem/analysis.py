@@ -19,11 +19,21 @@ Steps (timings reported in ``FEResult.info.timings``):
    substitution gives all DOFs (``fem.la.linsolve``): no refactorization per contact iteration;
 5. checks: no slave node outside the candidate set penetrates; every Newton-like loop converged;
 6. stresses by Gauss-point extrapolation and nodal averaging (``fem.recovery``); reactions.
+
+Order of the work. The pattern of A's upper triangle follows from the connectivity, the supports and the
+contact set alone (every entry of K, T and G taken as 1, so that no product cancels). It is built first while
+the element matrices are computed on a background thread; PARDISO's symbolic analysis of the pattern (ordering,
+one core) then runs on a thread while K, K_r and A's values are assembled, and the numeric factorization
+takes those values on the analysed pattern (an entry the values' products dropped as an exact zero is kept as
+a stored zero). Timings: ``contact_setup_s`` the patterns and contact set, ``assembly_s`` the rest of the
+element matrices and K, ``reduction_s`` K_r and A's values, ``analysis_s`` the symbolic analysis (overlapped
+with the two before), ``factor_s`` the wait for it and the numeric factorization.
 """
 
 from __future__ import annotations
 
 import time
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 import scipy.sparse as sp
@@ -32,14 +42,14 @@ from fem.mesh.hexmesh import HexMesh
 from fem.errors import FEConvergenceError, FEInputError
 
 from fem import recovery as st
-from fem.assembly import assemble_blocks, surface_load
+from fem.assembly import block_assembly, surface_load
 from fem.constraints import known_names, reduction
 from fem.contact.active_set import ReducedContact, penalty_active_set
 from fem.contact.patch import contact_patch
 from fem.contact.search import contact_set
 from fem.elements.hex8 import hex8_matrices
-from fem.la.linsolve import schur_system
-from fem.la.pardiso import upper_csr
+from fem.la.linsolve import schur_analysis
+from fem.la.pardiso import bordered_upper, on_pattern
 from fem.model import FEModel
 from fem.result import FEResult, PairResult, SolveInfo
 
@@ -76,6 +86,31 @@ def _closed_area(cs, sel, gap, sol) -> float:
     return float(cs.area[sel][gap[sel] <= tol].sum())
 
 
+def _ones(M: sp.csr_matrix) -> sp.csr_matrix:
+    """M's pattern with every stored entry 1 (a product of such patterns cancels nowhere)."""
+    return sp.csr_matrix((np.ones(len(M.data)), M.indices, M.indptr), shape=M.shape)
+
+
+def _patterns(mesh: HexMesh, model: FEModel, red, E_c: np.ndarray):
+    """What the symbolic analysis needs, from the mesh and supports alone (steps 1, 3 and 4, without values):
+    the assembly's scatter, the contact set and its candidates, the Schur rows C (free rigid DOFs, then the gap
+    rows), G_r^T, and the pattern of the bordered matrix's upper triangle (every entry of K, T and G taken as 1)."""
+    ba = block_assembly(mesh.cells, mesh.n_points)
+    cs = contact_set(mesh, model.contacts, E_c, model.contact.penalty_factor, model.contact.quadrature,
+                     model.contact.points) if model.contacts else None
+    cand = np.flatnonzero(cs.candidate) if cs is not None else np.zeros(0, np.int64)
+    T = red.T
+    Tt = T.T.tocsr()
+    GrT = None
+    if len(cand):
+        GrT = (Tt @ cs.G[cand].T).tocsr()
+        GrT.sort_indices()
+    C = np.concatenate([red.free_rigid, red.n + np.arange(len(cand))])
+    Kr_pattern = (_ones(Tt) @ (ba.pattern() @ _ones(T))).tocsr()
+    A_pattern = bordered_upper(Kr_pattern, _ones(GrT) if GrT is not None else None)
+    return ba, cs, cand, C, GrT, A_pattern
+
+
 def solve(mesh: HexMesh, model: FEModel) -> FEResult:
     """Solve the model on the mesh; raises FEInputError, FEConvergenceError or FEError."""
     t = {}
@@ -83,43 +118,47 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
     lam_c, mu_c, E_c = _cell_materials(mesh, model)
     red = reduction(mesh, model)
     incompatible = model.solver.element == "hex8i"
-    em = hex8_matrices(mesh.points, mesh.cells, lam_c, mu_c, incompatible)
-    K = assemble_blocks(em.stiffness, mesh.cells, mesh.n_points)
-    f = _external_load(mesh, model)
-    t["assembly_s"] = time.perf_counter() - t0
+    with ThreadPoolExecutor(max_workers=1) as background:
+        # the element matrices need nothing else: they are computed while the patterns are built (steps 1 and 4)
+        em_future = background.submit(hex8_matrices, mesh.points, mesh.cells, lam_c, mu_c, incompatible)
+        pending = None
+        try:
+            ba, cs, cand, C, GrT, A_pattern = _patterns(mesh, model, red, E_c)
+            t["contact_setup_s"] = time.perf_counter() - t0
+            # the symbolic analysis of A's pattern (one core) runs while the values are assembled (step 4)
+            pending = schur_analysis(A_pattern, C, model.solver.solver, definite=True)
+            del A_pattern
+            t1 = time.perf_counter()
+            em = em_future.result()
+            K = ba.assemble(em.stiffness)
+            del ba
+            f = _external_load(mesh, model)
+            t["assembly_s"] = time.perf_counter() - t1
 
-    t1 = time.perf_counter()
-    T = red.T
-    Tt = T.T.tocsr()  # T^T as CSR: (T.T @ K) would convert the whole K to CSC first
-    Kr = (Tt @ (K @ T)).tocsr()
-    fr = Tt @ (f - K @ red.u_prescribed) + red.f_ref
-    t["reduction_s"] = time.perf_counter() - t1
+            t1 = time.perf_counter()
+            T = red.T
+            Tt = T.T.tocsr()  # T^T as CSR: (T.T @ K) would convert the whole K to CSC first
+            Kr = (Tt @ (K @ T)).tocsr()
+            fr = Tt @ (f - K @ red.u_prescribed) + red.f_ref
+            A = on_pattern(bordered_upper(Kr, GrT), pending.pattern)
+            t["reduction_s"] = time.perf_counter() - t1
 
-    t1 = time.perf_counter()
-    cs = contact_set(mesh, model.contacts, E_c, model.contact.penalty_factor, model.contact.quadrature,
-                     model.contact.points) if model.contacts else None
-    cand = np.flatnonzero(cs.candidate) if cs is not None else np.zeros(0, np.int64)
+            t1 = time.perf_counter()
+            # only A_RR = K_r without the free rigid DOFs is factored: SPD (every body held), so Cholesky applies;
+            # the gap rows' zero diagonal lies in the Schur block C (mtype 2 instead of -2: 2-11 % less factor CPU
+            # time on the twin)
+            sysm = pending.factor(A)
+            t["factor_s"] = time.perf_counter() - t1
+            t["analysis_s"] = pending.analysis_s
+            del A
+        finally:
+            em_future.cancel()
+            if pending is not None:
+                pending.close()
     k = len(cand)
     n_r = red.n
     F = red.free_rigid
-    # the upper triangle of the bordered matrix A (step 4), built as PARDISO takes it: upper(K_r) with the columns
-    # G_r^T on its right, then the gap rows' zero diagonal (CSR stacking, rows sorted, no copy of the whole A)
-    A = upper_csr(Kr)
-    if k:
-        GrT = (Tt @ cs.G[cand].T).tocsr()
-        GrT.sort_indices()
-        zero = sp.csr_matrix((np.zeros(k), n_r + np.arange(k), np.arange(k + 1)), shape=(k, n_r + k))
-        A = sp.vstack([sp.hstack([A, GrT], format="csr"), zero], format="csr")
-    # Schur rows: the free rigid DOFs, then the gap rows (bordering)
-    C = np.concatenate([F, n_r + np.arange(k)])
     iF, ig = np.arange(len(F)), len(F) + np.arange(k)
-    t["contact_setup_s"] = time.perf_counter() - t1
-
-    t1 = time.perf_counter()
-    # only A_RR = K_r without the free rigid DOFs is factored: SPD (every body held), so Cholesky applies;
-    # the gap rows' zero diagonal lies in the Schur block C (mtype 2 instead of -2: 2-11 % less factor CPU time on the twin)
-    sysm = schur_system(A, C, model.solver.solver, definite=True, upper=True)
-    t["factor_s"] = time.perf_counter() - t1
 
     state = {}
 

@@ -16,14 +16,43 @@ the CSR arrays of the global matrix, without a COO list of the m (3k)^2 scalar e
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["assemble_blocks", "surface_load", "face_node_areas"]
+__all__ = ["BlockAssembly", "block_assembly", "assemble_blocks", "surface_load", "face_node_areas"]
 
 
-def assemble_blocks(Ke: np.ndarray, conn: np.ndarray, n_nodes: int) -> sp.csr_matrix:
-    """Sum element matrices (m, 3k, 3k) over connectivity (m, k) into a (3n, 3n) CSR matrix (sorted indices)."""
+@dataclass(frozen=True, eq=False)
+class BlockAssembly:
+    """Where the entries of the element matrices of a connectivity go in the CSR arrays of the global matrix.
+
+    ``scatter`` (nnz / 3, m k 3 k) is the 0/1 matrix of step (3); ``indptr`` and ``indices`` the CSR pattern
+    (3n, 3n), sorted. Known from the connectivity alone, before any element matrix (:func:`block_assembly`)."""
+
+    scatter: sp.csc_matrix
+    indptr: np.ndarray
+    indices: np.ndarray
+    n_nodes: int
+
+    def pattern(self) -> sp.csr_matrix:
+        """The global matrix's pattern with every stored entry 1."""
+        return self._csr(np.ones(len(self.indices)))
+
+    def assemble(self, Ke: np.ndarray) -> sp.csr_matrix:
+        """Sum element matrices (m, 3k, 3k) into the (3n, 3n) CSR matrix (sorted indices)."""
+        return self._csr(np.asarray(self.scatter @ np.asarray(Ke, float).reshape(self.scatter.shape[1], 3)).ravel())
+
+    def _csr(self, data: np.ndarray) -> sp.csr_matrix:
+        n = 3 * self.n_nodes
+        K = sp.csr_matrix((data, self.indices, self.indptr), shape=(n, n))
+        K.has_sorted_indices = True
+        return K
+
+
+def block_assembly(conn: np.ndarray, n_nodes: int) -> BlockAssembly:
+    """Steps (1)-(3) of the module docstring for connectivity (m, k)."""
     m, k = conn.shape
     c = np.asarray(conn, np.int64)
     N = sp.csr_matrix((np.ones(m * k), c.ravel(), np.arange(0, m * k + 1, k)), shape=(m, n_nodes))
@@ -32,25 +61,27 @@ def assemble_blocks(Ke: np.ndarray, conn: np.ndarray, n_nodes: int) -> sp.csr_ma
     nb = np.diff(P.indptr).astype(np.int64)
     bp = P.indptr[:-1].astype(np.int64)
     nnz = 9 * P.nnz
-    idt = np.int32 if max(nnz, 3 * n_nodes, Ke.size // 3) < np.iinfo(np.int32).max else np.int64
+    M = m * k * 3 * k
+    idt = np.int32 if max(nnz, 3 * n_nodes, M) < np.iinfo(np.int32).max else np.int64
     # (2) block index p of each element block (e, a, b): the pattern sampled with values 0, 1, ... (exact in float64)
     Q = sp.csr_matrix((np.arange(P.nnz, dtype=float), P.indices, P.indptr), shape=P.shape)
     r = np.broadcast_to(c[:, :, None], (m, k, k)).ravel()
     p = np.asarray(Q[r, np.broadcast_to(c[:, None, :], (m, k, k)).ravel()]).reshape(m, k, 1, k).astype(np.int64)
-    # (3) CSR data by one scatter product; row (e, a, i, b) of Ke.reshape(-1, 3) goes to row 2 bp_r + i nb_r + p
+    # (3) row (e, a, i, b) of Ke.reshape(-1, 3) goes to row 2 bp_r + i nb_r + p of the CSR data viewed as (nnz / 3, 3)
     rho = p + (2 * bp[c])[:, :, None, None] + np.arange(3)[None, None, :, None] * nb[c][:, :, None, None]
-    M = rho.size
     S = sp.csc_matrix((np.ones(M), rho.ravel().astype(idt), np.arange(M + 1, dtype=idt)), shape=(nnz // 3, M))
-    data = np.asarray(S @ np.asarray(Ke, float).reshape(M, 3)).ravel()
     lengths = np.repeat(3 * nb, 3)  # entries of scalar row 3 r + i
     indptr = np.zeros(3 * n_nodes + 1, idt)
     np.cumsum(lengths, out=indptr[1:])
     cols3 = (3 * P.indices.astype(idt)[:, None] + np.arange(3, dtype=idt)).ravel()  # block row r's columns, in order
     shift = (6 * bp[:, None] + 3 * np.arange(3)[None, :] * nb[:, None]).ravel().astype(idt)
     indices = cols3[np.arange(nnz, dtype=idt) - np.repeat(shift, lengths)]  # the same columns for i = 0, 1, 2
-    K = sp.csr_matrix((data, indices, indptr), shape=(3 * n_nodes, 3 * n_nodes))
-    K.has_sorted_indices = True
-    return K
+    return BlockAssembly(S, indptr, indices, n_nodes)
+
+
+def assemble_blocks(Ke: np.ndarray, conn: np.ndarray, n_nodes: int) -> sp.csr_matrix:
+    """Sum element matrices (m, 3k, 3k) over connectivity (m, k) into a (3n, 3n) CSR matrix (sorted indices)."""
+    return block_assembly(conn, n_nodes).assemble(Ke)
 
 
 def surface_load(points: np.ndarray, faces: np.ndarray, traction) -> tuple[np.ndarray, np.ndarray]:

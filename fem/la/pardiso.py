@@ -25,7 +25,7 @@ import scipy.sparse as sp
 
 from fem.errors import FEError
 
-__all__ = ["available", "upper_csr", "Pardiso"]
+__all__ = ["available", "upper_csr", "bordered_upper", "on_pattern", "Pardiso"]
 
 _P = ctypes.POINTER
 _I32 = ctypes.c_int32
@@ -89,6 +89,62 @@ def upper_csr(K: sp.spmatrix) -> sp.csr_matrix:
     return U
 
 
+def bordered_upper(Kr: sp.csr_matrix, GrT: sp.csr_matrix | None) -> sp.csr_matrix:
+    """The upper triangle of [[K_r, G_r^T], [G_r, 0]] as PARDISO takes it (CSR, rows sorted, each starting at its
+    diagonal entry): row i holds the upper part of K_r's row i, then G_r^T's row i (columns n_r + j), and the gap
+    rows their zero diagonal. One pass: each entry is written once at its place."""
+    n = Kr.shape[0]
+    if not Kr.has_canonical_format:
+        Kr = Kr.copy()
+        Kr.sum_duplicates()
+    row = np.repeat(np.arange(n, dtype=Kr.indices.dtype), np.diff(Kr.indptr))
+    keep = Kr.indices >= row
+    up = np.zeros(len(keep) + 1, np.int64)
+    np.cumsum(keep, out=up[1:])
+    up = up[Kr.indptr]  # upper entries before each row
+    first = Kr.indptr[1:] - np.diff(up)  # the first upper entry of each row: its diagonal, when stored
+    if not (np.all(np.diff(up) > 0) and np.array_equal(Kr.indices[np.minimum(first, len(Kr.indices) - 1)], np.arange(n))):
+        Kr = upper_csr(Kr)  # a diagonal entry is missing (a zero on it): stored as zero
+        return bordered_upper(Kr, GrT)
+    k = GrT.shape[1] if GrT is not None else 0
+    gptr = GrT.indptr.astype(np.int64) if k else np.zeros(n + 1, np.int64)
+    indptr = np.empty(n + k + 1, np.int64)
+    indptr[:n + 1] = up + gptr
+    indptr[n + 1:] = indptr[n] + np.arange(1, k + 1)
+    data = np.zeros(indptr[-1])
+    indices = np.empty(indptr[-1], np.int32 if indptr[-1] < np.iinfo(np.int32).max else np.int64)
+    ku = np.flatnonzero(keep)
+    dest = np.arange(len(ku)) + gptr[row[ku]]
+    data[dest], indices[dest] = Kr.data[ku], Kr.indices[ku]
+    if k:
+        rg = np.repeat(np.arange(n), np.diff(gptr))
+        dest = np.arange(len(GrT.indices)) + up[rg + 1]
+        data[dest], indices[dest] = GrT.data, n + GrT.indices
+        indices[indptr[n:-1]] = n + np.arange(k)  # the gap rows' zero diagonal
+    A = sp.csr_matrix((data, indices, indptr), shape=(n + k, n + k))
+    A.has_sorted_indices = True
+    return A
+
+
+def on_pattern(A: sp.csr_matrix, P: sp.csr_matrix) -> sp.csr_matrix:
+    """A's values on the pattern P that contains A's (both sorted CSR): P's arrays, A's values, zeros elsewhere.
+
+    A sparse product drops the entries that cancel to exactly zero, so the values' pattern may be smaller than
+    the pattern analysed beforehand; the factorization needs the analysed one."""
+    if np.array_equal(A.indptr, P.indptr) and np.array_equal(A.indices, P.indices):
+        return A
+    n = P.shape[1]
+    keys = np.repeat(np.arange(P.shape[0], dtype=np.int64) * n, np.diff(P.indptr)) + P.indices  # sorted
+    pos = np.searchsorted(keys, np.repeat(np.arange(A.shape[0], dtype=np.int64) * n, np.diff(A.indptr)) + A.indices)
+    if len(pos) and (pos[-1] >= len(keys) or not np.array_equal(P.indices[pos], A.indices)):
+        raise FEError("the assembled matrix has entries outside the pattern analysed for it")
+    data = np.zeros(P.nnz)
+    data[pos] = A.data
+    out = sp.csr_matrix((data, P.indices, P.indptr), shape=P.shape)
+    out.has_sorted_indices = True
+    return out
+
+
 def _checked_upper(U: sp.spmatrix) -> sp.csr_matrix:
     """U itself when it is an upper triangle in PARDISO's form (CSR, rows sorted and duplicate-free, each row
     starting at its diagonal entry); FEError otherwise."""
@@ -116,9 +172,12 @@ def available() -> bool:
 class Pardiso:
     """PARDISO factorization of a symmetric matrix (mtype 2: SPD, -2: indefinite), optional Schur rows."""
 
-    def __init__(self, K: sp.spmatrix, schur_rows: np.ndarray | None = None, mtype: int = 2, upper: bool = False):
+    def __init__(self, K: sp.spmatrix, schur_rows: np.ndarray | None = None, mtype: int = 2, upper: bool = False,
+                 factor: bool = True):
         """``upper``: K already holds only the upper triangle (CSR, sorted rows, each starting at its diagonal
-        entry), as :func:`upper_csr` gives; it is checked, not cut again."""
+        entry), as :func:`upper_csr` gives; it is checked, not cut again. ``factor`` = False: nothing is computed
+        yet; :meth:`analyse` (phase 11) then reads only K's pattern, and :meth:`factorize` the values of a matrix
+        with that pattern (phase 22), so that the analysis can run while the values are being computed."""
         if _PARDISO is None:  # pragma: no cover
             raise FEError("MKL PARDISO is not available (pypardiso/mkl could not be loaded)")
         U = _checked_upper(K) if upper else upper_csr(K)
@@ -130,20 +189,40 @@ class Pardiso:
         self._pt = np.zeros(64, np.int64)
         self._iparm = np.zeros(64, np.int32)
         ip = self._iparm
-        ip[0] = 1  # user-supplied iparm
+        ip[0] = 1  # user-supplied iparm (scaling and matching, iparm[10] and [12], off: phase 11 reads no values)
         ip[1] = 2  # METIS nested dissection
         ip[9] = 8  # pivot perturbation 1e-8
         ip[17] = -1  # report nnz(L)
         ip[34] = 1  # zero-based indexing
         self._perm = np.zeros(self.n, np.int32)
         self.n_schur = 0 if schur_rows is None else len(schur_rows)
-        x = np.zeros(max(self.n_schur**2, 1))
+        self._x = np.zeros(max(self.n_schur**2, 1))
         if self.n_schur:
             self._perm[schur_rows] = 1
             ip[35] = 1  # Schur complement (mode 2 would also factor S, which is singular for free bodies)
-        self._call(12, np.zeros(1), x)
-        self.schur = x.reshape(self.n_schur, self.n_schur) if self.n_schur else None
-        self.nnz_factor = int(ip[17])
+        self.schur = None
+        self.nnz_factor = 0
+        if factor:
+            self._call(12, np.zeros(1), self._x)
+            self._factored()
+
+    def _factored(self):
+        self.schur = self._x.reshape(self.n_schur, self.n_schur) if self.n_schur else None
+        self.nnz_factor = int(self._iparm[17])
+
+    def analyse(self):
+        """Phase 11: ordering and symbolic factorization of the pattern (no values are read)."""
+        self._call(11, np.zeros(1), self._x)
+
+    def factorize(self, data: np.ndarray):
+        """Phase 22 after :meth:`analyse`: the numeric factorization of the matrix with the pattern given at
+        construction and these values (its CSR data array), and the Schur complement."""
+        data = np.ascontiguousarray(data, dtype=np.float64)
+        if data.shape != self._a.shape:
+            raise FEError(f"PARDISO: {len(data)} values for a pattern of {len(self._a)} entries")
+        self._a = data
+        self._call(22, np.zeros(1), self._x)
+        self._factored()
 
     def _call(self, phase: int, b: np.ndarray, x: np.ndarray, nrhs: int = 1):
         err = _I32(0)

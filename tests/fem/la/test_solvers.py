@@ -78,6 +78,62 @@ def test_pardiso_refuses_a_matrix_given_as_upper_that_is_not():
         pardiso.Pardiso(K, None, upper=True)  # the whole symmetric matrix: rows do not start at the diagonal
 
 
+@pytest.mark.parametrize("gaps", [20, 0])
+@pytest.mark.parametrize("diagonal", ["stored", "missing"])
+def test_bordered_upper_equals_upper_of_the_bordered_matrix(gaps, diagonal):
+    """bordered_upper(K, G^T): upper([[K, G^T], [G, 0]]) with every diagonal entry stored, built in one pass."""
+    K, _ = _spd(200, seed=5)
+    if diagonal == "missing":
+        K = K.tolil()
+        K[3, 3] = 0.0
+        K = K.tocsr()
+        K.eliminate_zeros()
+    G = sp.random(gaps, K.shape[0], density=0.05, random_state=6, format="csr") if gaps else None
+    full = sp.bmat([[K, G.T], [G, sp.csr_matrix((gaps, gaps))]], format="csr") if gaps else K
+    U = pardiso.bordered_upper(K, G.T.tocsr() if gaps else None)
+    ref = pardiso.upper_csr(full)
+    assert np.array_equal(U.indptr, ref.indptr) and np.array_equal(U.indices, ref.indices)
+    np.testing.assert_array_equal(U.data, ref.data)
+
+
+def test_on_pattern_puts_values_on_a_larger_pattern():
+    """on_pattern: the values of a matrix whose product dropped exact zeros, on the pattern analysed before."""
+    K, _ = _spd(120, seed=7)
+    P = pardiso.upper_csr(K)
+    A = P.copy()
+    A.data[::5] = 0.0
+    A.eliminate_zeros()
+    B = pardiso.on_pattern(A, P)
+    assert np.array_equal(B.indptr, P.indptr) and np.array_equal(B.indices, P.indices)
+    np.testing.assert_array_equal(B.toarray(), A.toarray())
+    with pytest.raises(FEError, match="outside the pattern"):
+        pardiso.on_pattern(P, A)
+
+
+@pytest.mark.parametrize("method", [pytest.param("pardiso", marks=needs_mkl), "superlu"])
+def test_pending_analysis_then_values_equals_one_factorization(method):
+    """schur_analysis on the pattern (all entries 1) while the values are computed, then factor(values): the same
+    Schur complement and solution as schur_system of the matrix."""
+    from fem.la.linsolve import schur_analysis
+
+    K, rng = _spd()
+    G = sp.random(20, K.shape[0], density=0.05, random_state=4, format="csr")
+    U = pardiso.bordered_upper(K, G.T.tocsr())
+    C = K.shape[0] + np.arange(20)
+    pattern = sp.csr_matrix((np.ones(U.nnz), U.indices, U.indptr), shape=U.shape)
+    pending = schur_analysis(pattern, C, method)
+    try:
+        sysm = pending.factor(U)
+    finally:
+        pending.close()
+    ref = schur_system(U, C, method, upper=True)
+    assert np.abs(sysm.schur - ref.schur).max() <= 1e-12 * np.abs(ref.schur).max()
+    f = rng.standard_normal(U.shape[0])
+    u = sysm.solve(f, lambda fc: np.linalg.solve(sysm.schur, fc))
+    u_ref = ref.solve(f, lambda fc: np.linalg.solve(ref.schur, fc))
+    assert np.abs(u - u_ref).max() <= 1e-10 * np.abs(u_ref).max()
+
+
 @pytest.mark.parametrize("case", ["canonical", "no diagonal", "unsorted"])
 def test_upper_csr_equals_triu_with_diagonal(case):
     """fem.la.pardiso.upper_csr: the upper triangle, sorted, with every diagonal entry stored (zeros included)."""
