@@ -91,37 +91,14 @@ def upper_csr(K: sp.spmatrix) -> sp.csr_matrix:
 
 def bordered_upper(Kr: sp.csr_matrix, GrT: sp.csr_matrix | None) -> sp.csr_matrix:
     """The upper triangle of [[K_r, G_r^T], [G_r, 0]] as PARDISO takes it (CSR, rows sorted, each starting at its
-    diagonal entry): row i holds the upper part of K_r's row i, then G_r^T's row i (columns n_r + j), and the gap
-    rows their zero diagonal. One pass: each entry is written once at its place."""
-    n = Kr.shape[0]
-    if not Kr.has_canonical_format:
-        Kr = Kr.copy()
-        Kr.sum_duplicates()
-    row = np.repeat(np.arange(n, dtype=Kr.indices.dtype), np.diff(Kr.indptr))
-    keep = Kr.indices >= row
-    up = np.zeros(len(keep) + 1, np.int64)
-    np.cumsum(keep, out=up[1:])
-    up = up[Kr.indptr]  # upper entries before each row
-    first = Kr.indptr[1:] - np.diff(up)  # the first upper entry of each row: its diagonal, when stored
-    if not (np.all(np.diff(up) > 0) and np.array_equal(Kr.indices[np.minimum(first, len(Kr.indices) - 1)], np.arange(n))):
-        Kr = upper_csr(Kr)  # a diagonal entry is missing (a zero on it): stored as zero
-        return bordered_upper(Kr, GrT)
-    k = GrT.shape[1] if GrT is not None else 0
-    gptr = GrT.indptr.astype(np.int64) if k else np.zeros(n + 1, np.int64)
-    indptr = np.empty(n + k + 1, np.int64)
-    indptr[:n + 1] = up + gptr
-    indptr[n + 1:] = indptr[n] + np.arange(1, k + 1)
-    data = np.zeros(indptr[-1])
-    indices = np.empty(indptr[-1], np.int32 if indptr[-1] < np.iinfo(np.int32).max else np.int64)
-    ku = np.flatnonzero(keep)
-    dest = np.arange(len(ku)) + gptr[row[ku]]
-    data[dest], indices[dest] = Kr.data[ku], Kr.indices[ku]
-    if k:
-        rg = np.repeat(np.arange(n), np.diff(gptr))
-        dest = np.arange(len(GrT.indices)) + up[rg + 1]
-        data[dest], indices[dest] = GrT.data, n + GrT.indices
-        indices[indptr[n:-1]] = n + np.arange(k)  # the gap rows' zero diagonal
-    A = sp.csr_matrix((data, indices, indptr), shape=(n + k, n + k))
+    diagonal entry): upper(K_r) with the columns G_r^T on its right, then the gap rows' zero diagonal (CSR
+    stacking, no copy of the whole bordered matrix)."""
+    A = upper_csr(Kr)
+    if GrT is None:
+        return A
+    n, k = GrT.shape
+    zero = sp.csr_matrix((np.zeros(k), n + np.arange(k), np.arange(k + 1)), shape=(k, n + k))
+    A = sp.vstack([sp.hstack([A, GrT], format="csr"), zero], format="csr")
     A.has_sorted_indices = True
     return A
 
@@ -130,16 +107,20 @@ def on_pattern(A: sp.csr_matrix, P: sp.csr_matrix) -> sp.csr_matrix:
     """A's values on the pattern P that contains A's (both sorted CSR): P's arrays, A's values, zeros elsewhere.
 
     A sparse product drops the entries that cancel to exactly zero, so the values' pattern may be smaller than
-    the pattern analysed beforehand; the factorization needs the analysed one."""
-    if np.array_equal(A.indptr, P.indptr) and np.array_equal(A.indices, P.indices):
-        return A
-    n = P.shape[1]
-    keys = np.repeat(np.arange(P.shape[0], dtype=np.int64) * n, np.diff(P.indptr)) + P.indices  # sorted
-    pos = np.searchsorted(keys, np.repeat(np.arange(A.shape[0], dtype=np.int64) * n, np.diff(A.indptr)) + A.indices)
-    if len(pos) and (pos[-1] >= len(keys) or not np.array_equal(P.indices[pos], A.indices)):
+    the pattern analysed beforehand; the factorization needs the analysed one. A row with as many entries as
+    P's row has the same columns; only the other rows are searched."""
+    cA, cP = np.diff(A.indptr), np.diff(P.indptr)
+    pos = np.arange(A.nnz, dtype=np.int64) + np.repeat(P.indptr[:-1].astype(np.int64) - A.indptr[:-1], cA)
+    for i in np.flatnonzero(cA != cP):
+        a, p = slice(A.indptr[i], A.indptr[i + 1]), P.indptr[i]
+        pos[a] = p + np.searchsorted(P.indices[p:P.indptr[i + 1]], A.indices[a])
+    if len(pos) and (pos.max() >= P.nnz or not np.array_equal(P.indices[pos], A.indices)):
         raise FEError("the assembled matrix has entries outside the pattern analysed for it")
-    data = np.zeros(P.nnz)
-    data[pos] = A.data
+    if A.nnz == P.nnz:
+        data = A.data
+    else:
+        data = np.zeros(P.nnz)
+        data[pos] = A.data
     out = sp.csr_matrix((data, P.indices, P.indptr), shape=P.shape)
     out.has_sorted_indices = True
     return out
