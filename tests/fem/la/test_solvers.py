@@ -199,3 +199,21 @@ def test_vtu_has_all_fields(tmp_path):
     assert np.allclose(m.point_data["von_mises"], r.von_mises)
     assert np.array_equal(m.cell_data["body"][0], mesh.cell_body)
     assert m.cells[0].data.shape == (mesh.n_cells, 8)
+
+
+@needs_mkl
+def test_overlapped_and_serial_solves_agree(monkeypatch):
+    """fem.solve with the symbolic analysis overlapped (more than one kernel thread) and in turn (one): the same
+    displacements, pressures and Schur size (the analysed pattern holds every value's entry)."""
+    import fem.analysis as analysis
+
+    mesh, model, _ = hertz_line(elements_per_halfwidth=3.0, setup=ModelSetup(solver=SolverOptions("pardiso")))
+    runs = {}
+    for threads in (1, 2):
+        monkeypatch.setattr(analysis, "kernel_threads", lambda threads=threads: threads)
+        runs[threads] = solve(mesh, model)
+    a, b = runs[1], runs[2]
+    assert "analysis_s" in b.info.timings and "analysis_s" not in a.info.timings
+    assert a.info.schur_dofs == b.info.schur_dofs
+    assert np.abs(a.displacement - b.displacement).max() <= 1e-10 * np.abs(a.displacement).max()
+    assert a.pairs[0].max_pressure == pytest.approx(b.pairs[0].max_pressure, rel=1e-10)
