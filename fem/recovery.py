@@ -18,11 +18,9 @@ nodal tensor, sorted sigma_1 >= sigma_2 >= sigma_3. Components are stored in the
 
 from __future__ import annotations
 
-from concurrent.futures import ThreadPoolExecutor
-
 import numpy as np
 
-from fem.elements.hex8 import VTK_REF_NODES, HexGeometry, kernel_threads
+from fem.elements.hex8 import VTK_REF_NODES, HexGeometry, run_chunks
 
 __all__ = ["gauss_stress", "nodal_average", "von_mises", "principal", "tensor"]
 
@@ -31,8 +29,8 @@ def gauss_stress(geo: HexGeometry, cells: np.ndarray, u: np.ndarray, X: np.ndarr
                  chunk: int = 4000) -> np.ndarray:
     """Stresses (m, q, 6) [MPa] at the Gauss points; u (n, 3) [mm]; X the mode recovery or None.
 
-    Chunks of ``chunk`` cells run on :func:`fem.elements.hex8.kernel_threads` threads (numpy releases the GIL in
-    their products); each writes its own rows, so the result does not depend on the threads."""
+    Chunks of ``chunk`` cells run on the kernel threads (:func:`fem.elements.hex8.run_chunks`; numpy releases the
+    GIL in their products); each writes its own rows, so the result does not depend on the threads."""
     m, q = geo.dx.shape
     lam = np.broadcast_to(np.asarray(lam, float), (m,))
     mu = np.broadcast_to(np.asarray(mu, float), (m,))
@@ -51,14 +49,7 @@ def gauss_stress(geo: HexGeometry, cells: np.ndarray, u: np.ndarray, X: np.ndarr
         for c, (i, j) in enumerate(((0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (0, 2))):
             s[sl, :, c] = 2.0 * mu_ * eps[..., i, j] + (la * tr if i == j else 0.0)
 
-    starts = range(0, m, chunk)
-    threads = kernel_threads()
-    if threads > 1 and len(starts) > 1:
-        with ThreadPoolExecutor(max_workers=threads) as pool:
-            list(pool.map(run, starts))
-    else:
-        for start in starts:
-            run(start)
+    run_chunks(run, m, chunk)
     return s
 
 

@@ -60,6 +60,7 @@ __all__ = [
     "ElementMatrices",
     "hex8_matrices",
     "kernel_threads",
+    "run_chunks",
 ]
 
 # scikit-fem local node k of ElementHex1 sits at reference point doflocs[k]; VTK node P[k] sits there.
@@ -195,6 +196,22 @@ def kernel_threads() -> int:
     return max(1, min([cores, *limits]))
 
 
+def run_chunks(run, m: int, chunk: int, threads: int | None = None) -> None:
+    """Call ``run(start)`` for start = 0, chunk, 2 chunk, ... < m on ``threads`` threads (default
+    :func:`kernel_threads`). The chunks are the parallelism: BLAS is held to one thread meanwhile (a BLAS team per
+    small product only waits). Each ``run`` must write only its own rows, so the result does not depend on the
+    threads."""
+    starts = range(0, m, chunk)
+    threads = kernel_threads() if threads is None else int(threads)
+    with _one_blas_thread():
+        if threads > 1 and len(starts) > 1:
+            with ThreadPoolExecutor(max_workers=threads) as pool:
+                list(pool.map(run, starts))
+        else:
+            for s in starts:
+                run(s)
+
+
 def hex8_matrices(points, cells, lam, mu, incompatible: bool = True, chunk: int = 1000,
                   threads: int | None = None) -> ElementMatrices:
     """Stiffness of all cells (C3D8 or C3D8I-like with condensed modes), chunked to bound memory.
@@ -227,16 +244,7 @@ def hex8_matrices(points, cells, lam, mu, incompatible: bool = True, chunk: int 
         else:
             Ke[sl] = K  # R^T R: exactly symmetric
 
-    starts = range(0, m, chunk)
-    threads = kernel_threads() if threads is None else int(threads)
-    # the chunks are the parallelism: one BLAS thread each (a BLAS team per small product only waits)
-    with _one_blas_thread():
-        if threads > 1 and len(starts) > 1:
-            with ThreadPoolExecutor(max_workers=threads) as pool:
-                list(pool.map(run, starts))
-        else:
-            for s in starts:
-                run(s)
+    run_chunks(run, m, chunk, threads)
     if bad:
         raise _inverted(min(bad))
     geo = HexGeometry(grads=grads, dx=dx, xq=_XQ)
