@@ -19,11 +19,22 @@ Steps (timings reported in ``FEResult.info.timings``):
    substitution gives all DOFs (``fem.la.linsolve``): no refactorization per contact iteration;
 5. checks: no slave node outside the candidate set penetrates; every Newton-like loop converged;
 6. stresses by Gauss-point extrapolation and nodal averaging (``fem.recovery``); reactions.
+
+Order of the work (with PARDISO and more than one kernel thread allowed; otherwise steps 1-4 in turn). The
+pattern of A's upper triangle follows from the connectivity, the supports and the contact set alone (every entry of K, T and G taken as 1, so that no product cancels). It is built first while
+the element matrices are computed on a background thread; PARDISO's symbolic analysis of the pattern (ordering,
+one core) then runs on a thread while K, K_r and A's values are assembled, and the numeric factorization
+takes those values on the analysed pattern (an entry the values' products dropped as an exact zero is kept as
+a stored zero). Timings: ``contact_setup_s`` the patterns and contact set, ``assembly_s`` the rest of the
+element matrices and K, ``reduction_s`` K_r and A's values, ``analysis_s`` the symbolic analysis (overlapped
+with the two before), ``factor_s`` the wait for it and the numeric factorization.
 """
 
 from __future__ import annotations
 
 import time
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
@@ -32,13 +43,14 @@ from fem.mesh.hexmesh import HexMesh
 from fem.errors import FEConvergenceError, FEInputError
 
 from fem import recovery as st
-from fem.assembly import assemble_blocks, surface_load
+from fem.assembly import block_assembly, surface_load
 from fem.constraints import known_names, reduction
 from fem.contact.active_set import ReducedContact, penalty_active_set
 from fem.contact.patch import contact_patch
 from fem.contact.search import contact_set
-from fem.elements.hex8 import hex8_matrices
-from fem.la.linsolve import schur_system
+from fem.elements.hex8 import hex8_matrices, kernel_threads
+from fem.la.linsolve import choose_solver, schur_analysis, schur_system
+from fem.la.pardiso import bordered_upper, on_pattern
 from fem.model import FEModel
 from fem.result import FEResult, PairResult, SolveInfo
 
@@ -75,48 +87,111 @@ def _closed_area(cs, sel, gap, sol) -> float:
     return float(cs.area[sel][gap[sel] <= tol].sum())
 
 
+def _ones(M: sp.csr_matrix) -> sp.csr_matrix:
+    """M's pattern with every stored entry 1 (a product of such patterns cancels nowhere)."""
+    return sp.csr_matrix((np.ones(len(M.data)), M.indices, M.indptr), shape=M.shape)
+
+
+def _structure(mesh: HexMesh, model: FEModel, red, E_c: np.ndarray):
+    """What follows from the mesh and supports alone: the assembly's scatter, the contact set and its candidates,
+    the Schur rows C (free rigid DOFs, then the gap rows) and G_r^T (steps 1, 3 and 4 without values)."""
+    ba = block_assembly(mesh.cells, mesh.n_points)
+    cs = contact_set(mesh, model.contacts, E_c, model.contact.penalty_factor, model.contact.quadrature,
+                     model.contact.points) if model.contacts else None
+    cand = np.flatnonzero(cs.candidate) if cs is not None else np.zeros(0, np.int64)
+    GrT = None
+    if len(cand):
+        GrT = (red.T.T.tocsr() @ cs.G[cand].T).tocsr()
+        GrT.sort_indices()
+    C = np.concatenate([red.free_rigid, red.n + np.arange(len(cand))])
+    return ba, cs, cand, C, GrT
+
+
+def _pattern(ba, red, GrT: sp.csr_matrix | None) -> sp.csr_matrix:
+    """The pattern of the bordered matrix's upper triangle, every entry of K, T and G taken as 1."""
+    T = _ones(red.T)
+    Kr = (_ones(red.T.T.tocsr()) @ (ba.pattern() @ T)).tocsr()
+    return bordered_upper(Kr, _ones(GrT) if GrT is not None else None)
+
+
+@dataclass(frozen=True, eq=False)
+class _Factored:
+    """Steps 1-4 up to the factorization."""
+
+    em: object  # fem.elements.hex8.ElementMatrices
+    K: sp.csr_matrix
+    f: np.ndarray
+    Kr: sp.csr_matrix
+    fr: np.ndarray
+    cs: object  # fem.contact.search.ContactSet or None
+    cand: np.ndarray
+    C: np.ndarray
+    sysm: object  # fem.la.linsolve.SchurSystem
+
+
+def _factored(mesh: HexMesh, model: FEModel, red, materials, t: dict) -> _Factored:
+    """Steps 1-4 (module docstring, "Order of the work"); the overlap only with PARDISO and more than one kernel
+    thread allowed (``fem.elements.hex8.kernel_threads``; under a limit of one, all in turn)."""
+    lam_c, mu_c, E_c = materials
+    t0 = time.perf_counter()
+    method = choose_solver(model.solver.solver)
+    overlap = method == "pardiso" and kernel_threads() > 1
+    args = (mesh.points, mesh.cells, lam_c, mu_c, model.solver.element == "hex8i")
+    with ThreadPoolExecutor(max_workers=1) as background:
+        em_job = background.submit(hex8_matrices, *args) if overlap else None
+        pending = None
+        try:
+            ba, cs, cand, C, GrT = _structure(mesh, model, red, E_c)
+            if overlap:  # the symbolic analysis of A's pattern (one core) runs while the values are assembled
+                pending = schur_analysis(_pattern(ba, red, GrT), C, method, definite=True)
+            t["contact_setup_s"] = time.perf_counter() - t0
+
+            t1 = time.perf_counter()
+            em = em_job.result() if overlap else hex8_matrices(*args)
+            K = ba.assemble(em.stiffness)
+            del ba
+            f = _external_load(mesh, model)
+            t["assembly_s"] = time.perf_counter() - t1
+
+            t1 = time.perf_counter()
+            T = red.T
+            Tt = T.T.tocsr()  # T^T as CSR: (T.T @ K) would convert the whole K to CSC first
+            Kr = (Tt @ (K @ T)).tocsr()
+            fr = Tt @ (f - K @ red.u_prescribed) + red.f_ref
+            A = bordered_upper(Kr, GrT)
+            if overlap:
+                A = on_pattern(A, pending.pattern)
+            t["reduction_s"] = time.perf_counter() - t1
+
+            t1 = time.perf_counter()
+            # only A_RR = K_r without the free rigid DOFs is factored: SPD (every body held), so Cholesky applies;
+            # the gap rows' zero diagonal lies in the Schur block C (mtype 2 instead of -2: 2-11 % less factor CPU
+            # time on the twin)
+            sysm = pending.factor(A) if overlap else schur_system(A, C, method, definite=True, upper=True)
+            t["factor_s"] = time.perf_counter() - t1
+            if overlap:
+                t["analysis_s"] = pending.analysis_s
+        finally:
+            if em_job is not None:
+                em_job.cancel()
+            if pending is not None:
+                pending.close()
+    return _Factored(em, K, f, Kr, fr, cs, cand, C, sysm)
+
+
 def solve(mesh: HexMesh, model: FEModel) -> FEResult:
     """Solve the model on the mesh; raises FEInputError, FEConvergenceError or FEError."""
     t = {}
     t0 = time.perf_counter()
     lam_c, mu_c, E_c = _cell_materials(mesh, model)
     red = reduction(mesh, model)
-    incompatible = model.solver.element == "hex8i"
-    em = hex8_matrices(mesh.points, mesh.cells, lam_c, mu_c, incompatible)
-    K = assemble_blocks(em.stiffness, mesh.cells, mesh.n_points)
-    f = _external_load(mesh, model)
-    t["assembly_s"] = time.perf_counter() - t0
-
-    t1 = time.perf_counter()
-    T = red.T
-    Kr = (T.T @ K @ T).tocsr()
-    fr = T.T @ (f - K @ red.u_prescribed) + red.f_ref
-    t["reduction_s"] = time.perf_counter() - t1
-
-    t1 = time.perf_counter()
-    cs = contact_set(mesh, model.contacts, E_c, model.contact.penalty_factor, model.contact.quadrature,
-                     model.contact.points) if model.contacts else None
-    cand = np.flatnonzero(cs.candidate) if cs is not None else np.zeros(0, np.int64)
+    fa = _factored(mesh, model, red, (lam_c, mu_c, E_c), t)
+    em, K, f, Kr, fr, cs, cand, C, sysm = fa.em, fa.K, fa.f, fa.Kr, fa.fr, fa.cs, fa.cand, fa.C, fa.sysm
+    del fa
     k = len(cand)
     n_r = red.n
     F = red.free_rigid
-    A = Kr
-    if k:
-        Gr = (cs.G[cand] @ T).tocsr()
-        Gr.sort_indices()
-        zero = sp.csr_matrix((np.zeros(k), np.arange(k), np.arange(k + 1)), shape=(k, k))
-        # CSR stacking (no COO round trip as in bmat); rows stay sorted and duplicate-free (canonical)
-        A = sp.vstack([sp.hstack([Kr, Gr.T.tocsr()], format="csr"), sp.hstack([Gr, zero], format="csr")], format="csr")
-    # Schur rows: the free rigid DOFs, then the gap rows (bordering)
-    C = np.concatenate([F, n_r + np.arange(k)])
     iF, ig = np.arange(len(F)), len(F) + np.arange(k)
-    t["contact_setup_s"] = time.perf_counter() - t1
-
-    t1 = time.perf_counter()
-    # only A_RR = K_r without the free rigid DOFs is factored: SPD (every body held), so Cholesky applies;
-    # the gap rows' zero diagonal lies in the Schur block C (mtype 2 instead of -2: 2-11 % less factor CPU time on the twin)
-    sysm = schur_system(A, C, model.solver.solver, definite=True)
-    t["factor_s"] = time.perf_counter() - t1
 
     state = {}
 

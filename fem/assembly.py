@@ -1,33 +1,87 @@
 """Global assembly of element matrices into a sparse matrix with 3x3 node blocks.
 
-Element matrices (m, 3k, 3k), DOFs interleaved per node (global DOF 3 n + i), are summed into
-node blocks: the (row node, column node) pairs are made unique once (one sort of m k^2 keys) and
-each of the 9 block components is accumulated by ``np.bincount``. The block matrix (BSR) is then
-converted to CSR. This avoids the COO -> CSR conversion of m (3k)^2 scalar entries.
+Element matrices (m, 3k, 3k), DOFs interleaved per node (global DOF 3 n + i), are summed straight into
+the CSR arrays of the global matrix, without a COO list of the m (3k)^2 scalar entries:
+
+1. the node-block pattern is N^T N, N the (m, n) cell-node incidence (a sparse product), with sorted
+   block columns: block row r holds nb_r blocks starting at bp_r;
+2. the element block (e, a, b) (row node r = conn[e, a], column node c = conn[e, b]) is block p of the
+   pattern (looked up by sampling the pattern with the block indices as values);
+3. in CSR the 3 nb_r entries of scalar row 3 r + i start at 9 bp_r + 3 i nb_r, and the block's column j
+   is entry 3 (p - bp_r) + j of that row. The three entries (j = 0, 1, 2) of element row (e, a, i) and
+   element column node b are contiguous in ``Ke`` and in the CSR data, so the sum over elements is one
+   product of a 0/1 scatter matrix (one entry per element row-triple, at row 2 bp_r + i nb_r + p) with
+   ``Ke`` viewed as (m k 3 k, 3): no copy of the element matrices, no sort of their entries.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["assemble_blocks", "surface_load", "face_node_areas"]
+__all__ = ["BlockAssembly", "block_assembly", "assemble_blocks", "surface_load", "face_node_areas"]
+
+
+@dataclass(frozen=True, eq=False)
+class BlockAssembly:
+    """Where the entries of the element matrices of a connectivity go in the CSR arrays of the global matrix.
+
+    ``scatter`` (nnz / 3, m k 3 k) is the 0/1 matrix of step (3); ``indptr`` and ``indices`` the CSR pattern
+    (3n, 3n), sorted. Known from the connectivity alone, before any element matrix (:func:`block_assembly`)."""
+
+    scatter: sp.csc_matrix
+    indptr: np.ndarray
+    indices: np.ndarray
+    n_nodes: int
+
+    def pattern(self) -> sp.csr_matrix:
+        """The global matrix's pattern with every stored entry 1."""
+        return self._csr(np.ones(len(self.indices)))
+
+    def assemble(self, Ke: np.ndarray) -> sp.csr_matrix:
+        """Sum element matrices (m, 3k, 3k) into the (3n, 3n) CSR matrix (sorted indices)."""
+        return self._csr(np.asarray(self.scatter @ np.asarray(Ke, float).reshape(self.scatter.shape[1], 3)).ravel())
+
+    def _csr(self, data: np.ndarray) -> sp.csr_matrix:
+        n = 3 * self.n_nodes
+        K = sp.csr_matrix((data, self.indices, self.indptr), shape=(n, n))
+        K.has_sorted_indices = True
+        return K
+
+
+def block_assembly(conn: np.ndarray, n_nodes: int) -> BlockAssembly:
+    """Steps (1)-(3) of the module docstring for connectivity (m, k)."""
+    m, k = conn.shape
+    c = np.asarray(conn, np.int64)
+    N = sp.csr_matrix((np.ones(m * k), c.ravel(), np.arange(0, m * k + 1, k)), shape=(m, n_nodes))
+    P = (N.T @ N).tocsr()  # (1) node-block pattern
+    P.sort_indices()
+    nb = np.diff(P.indptr).astype(np.int64)
+    bp = P.indptr[:-1].astype(np.int64)
+    nnz = 9 * P.nnz
+    M = m * k * 3 * k
+    idt = np.int32 if max(nnz, 3 * n_nodes, M) < np.iinfo(np.int32).max else np.int64
+    # (2) block index p of each element block (e, a, b): the pattern sampled with values 0, 1, ... (exact in float64)
+    Q = sp.csr_matrix((np.arange(P.nnz, dtype=float), P.indices, P.indptr), shape=P.shape)
+    r = np.broadcast_to(c[:, :, None], (m, k, k)).ravel()
+    p = np.asarray(Q[r, np.broadcast_to(c[:, None, :], (m, k, k)).ravel()]).reshape(m, k, 1, k).astype(np.int64)
+    # (3) row (e, a, i, b) of Ke.reshape(-1, 3) goes to row 2 bp_r + i nb_r + p of the CSR data viewed as (nnz / 3, 3)
+    rho = p + (2 * bp[c])[:, :, None, None] + np.arange(3)[None, None, :, None] * nb[c][:, :, None, None]
+    S = sp.csc_matrix((np.ones(M), rho.ravel().astype(idt), np.arange(M + 1, dtype=idt)), shape=(nnz // 3, M))
+    lengths = np.repeat(3 * nb, 3)  # entries of scalar row 3 r + i
+    indptr = np.zeros(3 * n_nodes + 1, idt)
+    np.cumsum(lengths, out=indptr[1:])
+    cols3 = (3 * P.indices.astype(idt)[:, None] + np.arange(3, dtype=idt)).ravel()  # block row r's columns, in order
+    shift = (6 * bp[:, None] + 3 * np.arange(3)[None, :] * nb[:, None]).ravel().astype(idt)
+    indices = cols3[np.arange(nnz, dtype=idt) - np.repeat(shift, lengths)]  # the same columns for i = 0, 1, 2
+    return BlockAssembly(S, indptr, indices, n_nodes)
 
 
 def assemble_blocks(Ke: np.ndarray, conn: np.ndarray, n_nodes: int) -> sp.csr_matrix:
-    """Sum element matrices (m, 3k, 3k) over connectivity (m, k) into a (3n, 3n) CSR matrix."""
-    m, k = conn.shape
-    rows = np.broadcast_to(conn[:, :, None], (m, k, k)).ravel().astype(np.int64)
-    cols = np.broadcast_to(conn[:, None, :], (m, k, k)).ravel().astype(np.int64)
-    keys, inv = np.unique(rows * n_nodes + cols, return_inverse=True)
-    blocks = Ke.reshape(m, k, 3, k, 3).transpose(0, 1, 3, 2, 4).reshape(m * k * k, 9)
-    data = np.empty((len(keys), 9))
-    for c in range(9):
-        data[:, c] = np.bincount(inv, weights=blocks[:, c], minlength=len(keys))
-    brow = keys // n_nodes
-    indptr = np.searchsorted(brow, np.arange(n_nodes + 1)).astype(np.int64)
-    K = sp.bsr_matrix((data.reshape(-1, 3, 3), keys % n_nodes, indptr), shape=(3 * n_nodes, 3 * n_nodes))
-    return K.tocsr()
+    """Sum element matrices (m, 3k, 3k) over connectivity (m, k) into a (3n, 3n) CSR matrix (sorted indices)."""
+    return block_assembly(conn, n_nodes).assemble(Ke)
 
 
 def surface_load(points: np.ndarray, faces: np.ndarray, traction) -> tuple[np.ndarray, np.ndarray]:

@@ -20,25 +20,36 @@ from __future__ import annotations
 
 import numpy as np
 
-from fem.elements.hex8 import VTK_REF_NODES, HexGeometry
+from fem.elements.hex8 import VTK_REF_NODES, HexGeometry, run_chunks
 
 __all__ = ["gauss_stress", "nodal_average", "von_mises", "principal", "tensor"]
 
 
-def gauss_stress(geo: HexGeometry, cells: np.ndarray, u: np.ndarray, X: np.ndarray | None, lam, mu) -> np.ndarray:
-    """Stresses (m, q, 6) [MPa] at the Gauss points; u (n, 3) [mm]; X the mode recovery or None."""
-    ue = u[cells]  # (m, 8, 3)
-    if X is not None:
-        alpha = -np.matmul(X, ue.reshape(-1, 24, 1)).reshape(-1, 3, 3)  # (m, mode k, component i)
-        ue = np.concatenate([ue, alpha], axis=1)
-    H = np.einsum("mai,mqaj->mqij", ue, geo.grads)  # grad u: H_ij = d u_i / d x_j
-    eps = 0.5 * (H + H.transpose(0, 1, 3, 2))
-    tr = np.trace(eps, axis1=2, axis2=3)
-    lam = np.asarray(lam)[:, None]
-    mu = np.asarray(mu)[:, None]
-    s = np.empty(eps.shape[:2] + (6,))
-    for c, (i, j) in enumerate(((0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (0, 2))):
-        s[..., c] = 2.0 * mu * eps[..., i, j] + (lam * tr if i == j else 0.0)
+def gauss_stress(geo: HexGeometry, cells: np.ndarray, u: np.ndarray, X: np.ndarray | None, lam, mu,
+                 chunk: int = 4000) -> np.ndarray:
+    """Stresses (m, q, 6) [MPa] at the Gauss points; u (n, 3) [mm]; X the mode recovery or None.
+
+    Chunks of ``chunk`` cells run on the kernel threads (:func:`fem.elements.hex8.run_chunks`; numpy releases the
+    GIL in their products); each writes its own rows, so the result does not depend on the threads."""
+    m, q = geo.dx.shape
+    lam = np.broadcast_to(np.asarray(lam, float), (m,))
+    mu = np.broadcast_to(np.asarray(mu, float), (m,))
+    s = np.empty((m, q, 6))
+
+    def run(start: int) -> None:
+        sl = slice(start, min(start + chunk, m))
+        ue = u[cells[sl]]  # (c, 8, 3)
+        if X is not None:
+            alpha = -np.matmul(X[sl], ue.reshape(-1, 24, 1)).reshape(-1, 3, 3)  # (c, mode k, component i)
+            ue = np.concatenate([ue, alpha], axis=1)
+        H = np.einsum("mai,mqaj->mqij", ue, geo.grads[sl])  # grad u: H_ij = d u_i / d x_j
+        eps = 0.5 * (H + H.transpose(0, 1, 3, 2))
+        tr = np.trace(eps, axis1=2, axis2=3)
+        la, mu_ = lam[sl, None], mu[sl, None]
+        for c, (i, j) in enumerate(((0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (0, 2))):
+            s[sl, :, c] = 2.0 * mu_ * eps[..., i, j] + (la * tr if i == j else 0.0)
+
+    run_chunks(run, m, chunk)
     return s
 
 

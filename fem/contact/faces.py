@@ -21,26 +21,34 @@ def bilinear(xi, eta):
     return N, dxi, deta
 
 
-def project_to_faces(xs: np.ndarray, X: np.ndarray, iters: int = 12, limit: float = 2.0):
+def project_to_faces(xs: np.ndarray, X: np.ndarray, iters: int = 12, limit: float = 2.0, tol: float = 1e-13):
     """Closest-point projection of points xs (p, 3) on bilinear faces X (p, 4, 3): xi, eta, x_p.
 
-    The face coordinates are kept in [-limit, limit] (1: on the face itself; 2: its extension,
-    which lets the contact search slide across face boundaries)."""
+    Newton iterations on (xi, eta), at most ``iters``; a point stops once its step is below ``tol``
+    (in face coordinates; Newton converges quadratically, most points in 3-4 steps), so later steps
+    only run on the points still moving. The face coordinates are kept in [-limit, limit] (1: on the
+    face itself; 2: its extension, which lets the contact search slide across face boundaries)."""
     xi = np.zeros(len(xs))
     eta = np.zeros(len(xs))
+    idx = np.arange(len(xs))
+    Xa, xa = X, xs
     for _ in range(iters):
-        N, dxi, deta = bilinear(xi, eta)
-        x = np.einsum("pa,pai->pi", N, X)
-        t1 = np.einsum("pa,pai->pi", dxi, X)
-        t2 = np.einsum("pa,pai->pi", deta, X)
-        r = x - xs
+        if not len(idx):
+            break
+        N, dxi, deta = bilinear(xi[idx], eta[idx])
+        r = np.matmul(N[:, None, :], Xa)[:, 0] - xa
+        t1 = np.matmul(dxi[:, None, :], Xa)[:, 0]
+        t2 = np.matmul(deta[:, None, :], Xa)[:, 0]
         a11, a12, a22 = (t1 * t1).sum(1), (t1 * t2).sum(1), (t2 * t2).sum(1)
         b1, b2 = -(t1 * r).sum(1), -(t2 * r).sum(1)
         det = a11 * a22 - a12**2
-        xi = np.clip(xi + (a22 * b1 - a12 * b2) / det, -limit, limit)
-        eta = np.clip(eta + (a11 * b2 - a12 * b1) / det, -limit, limit)
-    N, dxi, deta = bilinear(xi, eta)
-    return xi, eta, np.einsum("pa,pai->pi", N, X)
+        x_new = np.clip(xi[idx] + (a22 * b1 - a12 * b2) / det, -limit, limit)
+        e_new = np.clip(eta[idx] + (a11 * b2 - a12 * b1) / det, -limit, limit)
+        moving = np.maximum(np.abs(x_new - xi[idx]), np.abs(e_new - eta[idx])) > tol
+        xi[idx], eta[idx] = x_new, e_new
+        idx, Xa, xa = idx[moving], Xa[moving], xa[moving]
+    N = bilinear(xi, eta)[0]
+    return xi, eta, np.matmul(N[:, None, :], X)[:, 0]
 
 
 def surface_mass(points: np.ndarray, faces: np.ndarray) -> sp.csr_matrix:

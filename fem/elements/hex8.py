@@ -43,6 +43,7 @@ Local node order is VTK's (= C3D8's), DOFs interleaved per node: (u_x, u_y, u_z)
 
 from __future__ import annotations
 
+import contextlib
 import os
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
@@ -59,6 +60,7 @@ __all__ = [
     "ElementMatrices",
     "hex8_matrices",
     "kernel_threads",
+    "run_chunks",
 ]
 
 # scikit-fem local node k of ElementHex1 sits at reference point doflocs[k]; VTK node P[k] sits there.
@@ -113,27 +115,37 @@ def _inv3(J):
     inv[..., 2, 0], inv[..., 2, 1], inv[..., 2, 2] = C, b * g - a * h, a * e - b * d
     return inv / det[..., None, None], det
 
-def hex_geometry(points: np.ndarray, cells: np.ndarray, incompatible: bool) -> HexGeometry:
-    """Gauss-point gradients (2x2x2) of VTK-ordered hexahedra, with the Taylor-corrected modes (module docstring)."""
-    X = points[cells]  # (m, 8, 3)
+def _geometry(X: np.ndarray, incompatible: bool):
+    """Gradients (m, q, nf, 3) and det J (m, q) of the hexahedra with node coordinates X (m, 8, 3)."""
     dN = _ref_grads(_XQ)  # (q, 8, 3)
-    J = np.ascontiguousarray(np.tensordot(X, dN, axes=([1], [1])).transpose(0, 2, 1, 3))  # (m, q, i, k) dx_i/dxi_k
+    m = len(X)
+    # J[m, q, i, k] = sum_a X[m, a, i] dN[q, a, k]: one matrix product (3m, 8) (8, 3q)
+    J = (X.transpose(0, 2, 1).reshape(-1, 8) @ dN.transpose(1, 0, 2).reshape(8, -1)).reshape(m, 3, -1, 3).transpose(0, 2, 1, 3)
     inv, det = _inv3(J)  # inv[k, i] = dxi_k/dx_i
-    if np.any(det <= 0.0):
-        bad = int(np.flatnonzero((det <= 0.0).any(axis=1))[0])
-        raise FEInputError("mesh.cells", bad, "the index of a hexahedron with det J > 0 at all Gauss points (VTK node order)",
-                           "this cell is inverted or degenerate")
-    m, q = det.shape
+    q = det.shape[1]
     nf = 11 if incompatible else 8
     g = np.empty((m, q, nf, 3))
     g[:, :, :8, :] = np.matmul(dN[None], inv)
     if incompatible:
-        J0 = np.tensordot(X, _ref_grads(np.full((3, 1), 0.5))[0], axes=([1], [0]))  # (m, i, k)
+        J0 = np.einsum("mai,ak->mik", X, _ref_grads(np.full((3, 1), 0.5))[0])  # (m, i, k)
         inv0, det0 = _inv3(J0)
         dP = -4.0 * (2.0 * _XQ - 1.0)  # (3, q)
         ratio = det0[:, None] / det
         for k in range(3):
             g[:, :, 8 + k, :] = (ratio[:, :, None] * dP[k][None, :, None]) * inv0[:, None, k, :]
+    return g, det
+
+
+def _inverted(cell: int) -> FEInputError:
+    return FEInputError("mesh.cells", cell, "the index of a hexahedron with det J > 0 at all Gauss points (VTK node order)",
+                        "this cell is inverted or degenerate")
+
+
+def hex_geometry(points: np.ndarray, cells: np.ndarray, incompatible: bool) -> HexGeometry:
+    """Gauss-point gradients (2x2x2) of VTK-ordered hexahedra, with the Taylor-corrected modes (module docstring)."""
+    g, det = _geometry(points[cells], incompatible)
+    if np.any(det <= 0.0):
+        raise _inverted(int(np.flatnonzero((det <= 0.0).any(axis=1))[0]))
     return HexGeometry(grads=g, dx=np.abs(det) * _WQ[None, :], xq=_XQ)
 
 
@@ -164,6 +176,15 @@ class ElementMatrices:
     geometry: HexGeometry
 
 
+def _one_blas_thread():
+    """A context holding BLAS to one thread (threadpoolctl), or nothing when threadpoolctl is absent."""
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:  # pragma: no cover - optional dependency
+        return contextlib.nullcontext()
+    return threadpool_limits(1, user_api="blas")
+
+
 def kernel_threads() -> int:
     """Threads for the chunked element kernels: the BLAS thread limit in force (threadpoolctl), at most the cores."""
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
@@ -175,21 +196,45 @@ def kernel_threads() -> int:
     return max(1, min([cores, *limits]))
 
 
+def run_chunks(run, m: int, chunk: int, threads: int | None = None) -> None:
+    """Call ``run(start)`` for start = 0, chunk, 2 chunk, ... < m on ``threads`` threads (default
+    :func:`kernel_threads`). The chunks are the parallelism: BLAS is held to one thread meanwhile (a BLAS team per
+    small product only waits). Each ``run`` must write only its own rows, so the result does not depend on the
+    threads."""
+    starts = range(0, m, chunk)
+    threads = kernel_threads() if threads is None else int(threads)
+    with _one_blas_thread():
+        if threads > 1 and len(starts) > 1:
+            with ThreadPoolExecutor(max_workers=threads) as pool:
+                list(pool.map(run, starts))
+        else:
+            for s in starts:
+                run(s)
+
+
 def hex8_matrices(points, cells, lam, mu, incompatible: bool = True, chunk: int = 1000,
                   threads: int | None = None) -> ElementMatrices:
     """Stiffness of all cells (C3D8 or C3D8I-like with condensed modes), chunked to bound memory.
 
-    The chunks are independent (each writes its own rows of the outputs) and numpy releases the GIL in
-    their batched products and solves, so they run on ``threads`` threads (default ``kernel_threads()``);
-    the result does not depend on the number of threads (same chunks, same operations)."""
-    geo = hex_geometry(points, cells, incompatible)
+    The chunks are independent (each computes its cells' geometry and writes its own rows of the outputs) and
+    numpy releases the GIL in their batched products and solves, so they run on ``threads`` threads (default
+    ``kernel_threads()``); the result does not depend on the number of threads (same chunks, same operations)."""
     m = len(cells)
+    nf = 11 if incompatible else 8
+    grads = np.empty((m, len(_WQ), nf, 3))
+    dx = np.empty((m, len(_WQ)))
     Ke = np.empty((m, 24, 24))
     X = np.empty((m, 9, 24)) if incompatible else None
+    bad = []
 
     def run(s: int) -> None:
         sl = slice(s, min(s + chunk, m))
-        K = isotropic_stiffness(geo.grads[sl], geo.dx[sl], lam[sl], mu[sl])
+        g, det = _geometry(points[cells[sl]], incompatible)
+        if np.any(det <= 0.0):
+            bad.append(s + int(np.flatnonzero((det <= 0.0).any(axis=1))[0]))
+            return
+        grads[sl], dx[sl] = g, det * _WQ[None, :]
+        K = isotropic_stiffness(g, dx[sl], lam[sl], mu[sl])
         if incompatible:
             Kaa, Kau = K[:, 24:, 24:], K[:, 24:, :24]
             Xs = np.linalg.solve(Kaa, Kau)
@@ -199,12 +244,8 @@ def hex8_matrices(points, cells, lam, mu, incompatible: bool = True, chunk: int 
         else:
             Ke[sl] = K  # R^T R: exactly symmetric
 
-    starts = range(0, m, chunk)
-    threads = kernel_threads() if threads is None else int(threads)
-    if threads > 1 and len(starts) > 1:
-        with ThreadPoolExecutor(max_workers=threads) as pool:
-            list(pool.map(run, starts))
-    else:
-        for s in starts:
-            run(s)
+    run_chunks(run, m, chunk, threads)
+    if bad:
+        raise _inverted(min(bad))
+    geo = HexGeometry(grads=grads, dx=dx, xq=_XQ)
     return ElementMatrices(stiffness=Ke, condensation=X, geometry=geo)

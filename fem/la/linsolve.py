@@ -22,6 +22,7 @@ solves without contact.
 
 from __future__ import annotations
 
+import threading
 import time
 from dataclasses import dataclass, field
 from typing import Callable
@@ -34,7 +35,8 @@ from fem.errors import FEConvergenceError, FEError, FEInputError
 
 from fem.la import pardiso
 
-__all__ = ["choose_solver", "SchurSystem", "schur_system", "linear_solve", "rigid_body_modes"]
+__all__ = ["choose_solver", "SchurSystem", "schur_system", "PendingSchur", "schur_analysis", "linear_solve",
+           "rigid_body_modes"]
 
 
 def choose_solver(name: str) -> str:
@@ -61,30 +63,100 @@ class SchurSystem:
         return self._solve(f, solve_c)
 
 
-def schur_system(K: sp.spmatrix, C: np.ndarray, method: str = "auto", definite: bool = True) -> SchurSystem:
+def _pardiso_system(fac: pardiso.Pardiso, C: np.ndarray, factor_s: float) -> SchurSystem:
+    """The SchurSystem of a factored PARDISO matrix with Schur rows C."""
+    if len(C):
+        def solve(f, solve_c):
+            y = fac.forward(f)
+            y[C] = solve_c(y[C].copy())
+            return fac.backward(y)
+    else:
+        def solve(f, solve_c):
+            return fac.solve(f)
+    return SchurSystem("pardiso", C, fac.schur if len(C) else np.zeros((0, 0)), factor_s, solve)
+
+
+class PendingSchur:
+    """The symbolic analysis of a symmetric matrix's pattern running on a thread while its values are computed.
+
+    Made by :func:`schur_analysis`; :meth:`factor` waits for the analysis and factors the values (the same
+    Schur complement and solution as :func:`schur_system` of that matrix, which PARDISO's phases 11 and 22 give
+    like its phase 12). The analysis (ordering and symbolic factorization) reads no values and runs on one core,
+    so the caller can assemble the values on the other meanwhile. ``close`` waits for the thread and frees
+    PARDISO's memory when the values never come (an error on the way); use it in a ``finally``."""
+
+    def __init__(self, U: sp.spmatrix, C: np.ndarray, method: str, definite: bool):
+        self.method = choose_solver(method)
+        self.pattern = U  # the upper-triangle pattern analysed: the values given to factor() must have it
+        self.C = np.asarray(C, np.int64)
+        self.definite = definite
+        self.analysis_s = 0.0
+        self._fac = None
+        self._thread = None
+        self._error: BaseException | None = None
+        if self.method == "pardiso":
+            self._fac = pardiso.Pardiso(U, self.C if len(self.C) else None, mtype=2 if definite else -2, upper=True,
+                                        factor=False)
+            self._thread = threading.Thread(target=self._analyse, name="pardiso-analysis", daemon=True)
+            self._thread.start()
+
+    def _analyse(self):
+        t0 = time.perf_counter()
+        try:
+            self._fac.analyse()
+        except BaseException as exc:  # re-raised by factor()
+            self._error = exc
+        self.analysis_s = time.perf_counter() - t0
+
+    def _join(self):
+        if self._thread is not None:
+            self._thread.join()
+            self._thread = None
+
+    def factor(self, U: sp.spmatrix) -> SchurSystem:
+        """Factor the matrix whose upper triangle U has the pattern given at construction (CSR, same arrays)."""
+        t0 = time.perf_counter()
+        if self.method != "pardiso":
+            return schur_system(U, self.C, self.method, self.definite, upper=True)
+        self._join()
+        if self._error is not None:
+            raise self._error
+        self._fac.factorize(U.data)
+        return _pardiso_system(self._fac, self.C, time.perf_counter() - t0)
+
+    def close(self):
+        """Wait for the analysis; free PARDISO's memory unless the matrix was factored."""
+        self._join()
+        if self._fac is not None and self._fac.schur is None and self._fac.nnz_factor == 0:
+            self._fac.free()
+
+
+def schur_analysis(U: sp.spmatrix, C: np.ndarray, method: str = "auto", definite: bool = True) -> PendingSchur:
+    """Start the symbolic analysis of the upper-triangle pattern U (the form of :func:`fem.la.pardiso.upper_csr`)
+    with Schur rows C on a thread; :meth:`PendingSchur.factor` finishes it with the values (SuperLU: all then)."""
+    return PendingSchur(U, C, method, definite)
+
+
+def schur_system(K: sp.spmatrix, C: np.ndarray, method: str = "auto", definite: bool = True,
+                 upper: bool = False) -> SchurSystem:
     """Factor symmetric K once, with the dense Schur complement on sorted rows C (may be empty).
 
     ``definite``: K_RR (the rows outside C, the only block that is factored) is positive definite, so
     PARDISO's Cholesky (mtype 2) applies even when the C block is not (the zero diagonal of gap rows);
-    otherwise the symmetric indefinite factorization (mtype -2, Bunch-Kaufman with pivot perturbation)."""
+    otherwise the symmetric indefinite factorization (mtype -2, Bunch-Kaufman with pivot perturbation).
+    ``upper``: K holds only the upper triangle, in the form of :func:`fem.la.pardiso.upper_csr` (every row
+    starting at its stored diagonal entry), which PARDISO takes as it is (no copy of the whole matrix)."""
     method = choose_solver(method)
     C = np.asarray(C, np.int64)
     t0 = time.perf_counter()
     if method == "pardiso":
-        fac = pardiso.Pardiso(K, C if len(C) else None, mtype=2 if definite else -2)
-        if len(C):
-            def solve(f, solve_c):
-                y = fac.forward(f)
-                y[C] = solve_c(y[C].copy())
-                return fac.backward(y)
-        else:
-            def solve(f, solve_c):
-                return fac.solve(f)
-        S = fac.schur if len(C) else np.zeros((0, 0))
-        return SchurSystem("pardiso", C, S, time.perf_counter() - t0, solve)
+        fac = pardiso.Pardiso(K, C if len(C) else None, mtype=2 if definite else -2, upper=upper)
+        return _pardiso_system(fac, C, time.perf_counter() - t0)
     if method != "superlu":
         raise FEInputError("solver.solver", method, "'pardiso', 'superlu' or 'auto'")
     K = sp.csr_matrix(K)
+    if upper:
+        K = (K + sp.triu(K, 1, format="csr").T).tocsr()
     R = np.setdiff1d(np.arange(K.shape[0]), C)
     KRR = K[R][:, R].tocsc()
     try:

@@ -25,7 +25,7 @@ import scipy.sparse as sp
 
 from fem.errors import FEError
 
-__all__ = ["available", "upper_csr", "Pardiso"]
+__all__ = ["available", "upper_csr", "bordered_upper", "on_pattern", "Pardiso"]
 
 _P = ctypes.POINTER
 _I32 = ctypes.c_int32
@@ -89,6 +89,62 @@ def upper_csr(K: sp.spmatrix) -> sp.csr_matrix:
     return U
 
 
+def bordered_upper(Kr: sp.csr_matrix, GrT: sp.csr_matrix | None) -> sp.csr_matrix:
+    """The upper triangle of [[K_r, G_r^T], [G_r, 0]] as PARDISO takes it (CSR, rows sorted, each starting at its
+    diagonal entry): upper(K_r) with the columns G_r^T on its right, then the gap rows' zero diagonal (CSR
+    stacking, no copy of the whole bordered matrix)."""
+    A = upper_csr(Kr)
+    if GrT is None:
+        return A
+    n, k = GrT.shape
+    zero = sp.csr_matrix((np.zeros(k), n + np.arange(k), np.arange(k + 1)), shape=(k, n + k))
+    A = sp.vstack([sp.hstack([A, GrT], format="csr"), zero], format="csr")
+    A.has_sorted_indices = True
+    return A
+
+
+def on_pattern(A: sp.csr_matrix, P: sp.csr_matrix) -> sp.csr_matrix:
+    """A's values on the pattern P that contains A's (both sorted CSR): P's arrays, A's values, zeros elsewhere.
+
+    A sparse product drops the entries that cancel to exactly zero, so the values' pattern may be smaller than
+    the pattern analysed beforehand; the factorization needs the analysed one. A row with as many entries as
+    P's row has the same columns; only the other rows are searched."""
+    cA, cP = np.diff(A.indptr), np.diff(P.indptr)
+    pos = np.arange(A.nnz, dtype=np.int64) + np.repeat(P.indptr[:-1].astype(np.int64) - A.indptr[:-1], cA)
+    for i in np.flatnonzero(cA != cP):
+        a, p = slice(A.indptr[i], A.indptr[i + 1]), P.indptr[i]
+        pos[a] = p + np.searchsorted(P.indices[p:P.indptr[i + 1]], A.indices[a])
+    if len(pos) and (pos.max() >= P.nnz or not np.array_equal(P.indices[pos], A.indices)):
+        raise FEError("the assembled matrix has entries outside the pattern analysed for it")
+    if A.nnz == P.nnz:
+        data = A.data
+    else:
+        data = np.zeros(P.nnz)
+        data[pos] = A.data
+    out = sp.csr_matrix((data, P.indices, P.indptr), shape=P.shape)
+    out.has_sorted_indices = True
+    return out
+
+
+def _checked_upper(U: sp.spmatrix) -> sp.csr_matrix:
+    """U itself when it is an upper triangle in PARDISO's form (CSR, rows sorted and duplicate-free, each row
+    starting at its diagonal entry); FEError otherwise."""
+    if not (sp.issparse(U) and U.format == "csr"):
+        raise FEError("an upper-triangle matrix for PARDISO must be CSR")
+    n = U.shape[0]
+    starts = U.indptr[:-1]
+    ok = U.shape[1] == n and bool(np.all(np.diff(U.indptr) > 0)) and np.array_equal(U.indices[starts], np.arange(n))
+    if ok:
+        inc = np.diff(U.indices) > 0
+        inc[starts[1:] - 1] = True  # a row's first index may be below the previous row's last
+        ok = bool(inc.all())
+    if not ok:
+        raise FEError("the matrix given as an upper triangle is not one: every row must start at its diagonal entry "
+                      "and have increasing column indices")
+    U.has_sorted_indices = True
+    return U
+
+
 def available() -> bool:
     """True when MKL PARDISO could be loaded."""
     return _PARDISO is not None
@@ -97,10 +153,15 @@ def available() -> bool:
 class Pardiso:
     """PARDISO factorization of a symmetric matrix (mtype 2: SPD, -2: indefinite), optional Schur rows."""
 
-    def __init__(self, K: sp.spmatrix, schur_rows: np.ndarray | None = None, mtype: int = 2):
+    def __init__(self, K: sp.spmatrix, schur_rows: np.ndarray | None = None, mtype: int = 2, upper: bool = False,
+                 factor: bool = True):
+        """``upper``: K already holds only the upper triangle (CSR, sorted rows, each starting at its diagonal
+        entry), as :func:`upper_csr` gives; it is checked, not cut again. ``factor`` = False: nothing is computed
+        yet; :meth:`analyse` (phase 11) then reads only K's pattern, and :meth:`factorize` the values of a matrix
+        with that pattern (phase 22), so that the analysis can run while the values are being computed."""
         if _PARDISO is None:  # pragma: no cover
             raise FEError("MKL PARDISO is not available (pypardiso/mkl could not be loaded)")
-        U = upper_csr(K)
+        U = _checked_upper(K) if upper else upper_csr(K)
         self.mtype = int(mtype)
         self.n = U.shape[0]
         self._a = np.ascontiguousarray(U.data, dtype=np.float64)
@@ -109,20 +170,40 @@ class Pardiso:
         self._pt = np.zeros(64, np.int64)
         self._iparm = np.zeros(64, np.int32)
         ip = self._iparm
-        ip[0] = 1  # user-supplied iparm
+        ip[0] = 1  # user-supplied iparm (scaling and matching, iparm[10] and [12], off: phase 11 reads no values)
         ip[1] = 2  # METIS nested dissection
         ip[9] = 8  # pivot perturbation 1e-8
         ip[17] = -1  # report nnz(L)
         ip[34] = 1  # zero-based indexing
         self._perm = np.zeros(self.n, np.int32)
         self.n_schur = 0 if schur_rows is None else len(schur_rows)
-        x = np.zeros(max(self.n_schur**2, 1))
+        self._x = np.zeros(max(self.n_schur**2, 1))
         if self.n_schur:
             self._perm[schur_rows] = 1
             ip[35] = 1  # Schur complement (mode 2 would also factor S, which is singular for free bodies)
-        self._call(12, np.zeros(1), x)
-        self.schur = x.reshape(self.n_schur, self.n_schur) if self.n_schur else None
-        self.nnz_factor = int(ip[17])
+        self.schur = None
+        self.nnz_factor = 0
+        if factor:
+            self._call(12, np.zeros(1), self._x)
+            self._factored()
+
+    def _factored(self):
+        self.schur = self._x.reshape(self.n_schur, self.n_schur) if self.n_schur else None
+        self.nnz_factor = int(self._iparm[17])
+
+    def analyse(self):
+        """Phase 11: ordering and symbolic factorization of the pattern (no values are read)."""
+        self._call(11, np.zeros(1), self._x)
+
+    def factorize(self, data: np.ndarray):
+        """Phase 22 after :meth:`analyse`: the numeric factorization of the matrix with the pattern given at
+        construction and these values (its CSR data array), and the Schur complement."""
+        data = np.ascontiguousarray(data, dtype=np.float64)
+        if data.shape != self._a.shape:
+            raise FEError(f"PARDISO: {len(data)} values for a pattern of {len(self._a)} entries")
+        self._a = data
+        self._call(22, np.zeros(1), self._x)
+        self._factored()
 
     def _call(self, phase: int, b: np.ndarray, x: np.ndarray, nrhs: int = 1):
         err = _I32(0)

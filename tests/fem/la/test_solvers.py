@@ -6,6 +6,7 @@ import pytest
 import scipy.sparse as sp
 
 from fem import SolverOptions, solve
+from fem.errors import FEError
 from fem.la import pardiso
 from fem.la.linsolve import linear_solve, rigid_body_modes, schur_system
 from fem.verification import ModelSetup, cantilever, hertz_line
@@ -52,6 +53,85 @@ def test_pardiso_schur_of_bordered_matrix(definite):
     f = rng.standard_normal(A.shape[0])
     u = sysm.solve(f, lambda fc: np.linalg.solve(sysm.schur, fc))
     assert np.abs(A @ u - f).max() < 1e-9 * np.abs(f).max()
+
+
+@pytest.mark.parametrize("method", [pytest.param("pardiso", marks=needs_mkl), "superlu"])
+def test_schur_system_of_an_upper_triangle(method):
+    """schur_system(..., upper=True): the bordered matrix given by its upper triangle (as fem.analysis builds it)
+    gives the Schur complement and the solution of the whole symmetric matrix."""
+    K, rng = _spd()
+    G = sp.random(20, K.shape[0], density=0.05, random_state=4, format="csr")
+    A = sp.bmat([[K, G.T], [G, sp.csr_matrix((20, 20))]], format="csr")
+    C = K.shape[0] + np.arange(20)
+    full = schur_system(A, C, method)
+    up = schur_system(pardiso.upper_csr(A), C, method, upper=True)
+    assert np.abs(up.schur - full.schur).max() <= 1e-12 * np.abs(full.schur).max()
+    f = rng.standard_normal(A.shape[0])
+    u = up.solve(f, lambda fc: np.linalg.solve(up.schur, fc))
+    assert np.abs(A @ u - f).max() < 1e-9 * np.abs(f).max()
+
+
+@needs_mkl
+def test_pardiso_refuses_a_matrix_given_as_upper_that_is_not():
+    K, _ = _spd(40, seed=3)
+    with pytest.raises(FEError, match="not one"):
+        pardiso.Pardiso(K, None, upper=True)  # the whole symmetric matrix: rows do not start at the diagonal
+
+
+@pytest.mark.parametrize("gaps", [20, 0])
+@pytest.mark.parametrize("diagonal", ["stored", "missing"])
+def test_bordered_upper_equals_upper_of_the_bordered_matrix(gaps, diagonal):
+    """bordered_upper(K, G^T): upper([[K, G^T], [G, 0]]) with every diagonal entry stored, built in one pass."""
+    K, _ = _spd(200, seed=5)
+    if diagonal == "missing":
+        K = K.tolil()
+        K[3, 3] = 0.0
+        K = K.tocsr()
+        K.eliminate_zeros()
+    G = sp.random(gaps, K.shape[0], density=0.05, random_state=6, format="csr") if gaps else None
+    full = sp.bmat([[K, G.T], [G, sp.csr_matrix((gaps, gaps))]], format="csr") if gaps else K
+    U = pardiso.bordered_upper(K, G.T.tocsr() if gaps else None)
+    ref = pardiso.upper_csr(full)
+    assert np.array_equal(U.indptr, ref.indptr) and np.array_equal(U.indices, ref.indices)
+    np.testing.assert_array_equal(U.data, ref.data)
+
+
+def test_on_pattern_puts_values_on_a_larger_pattern():
+    """on_pattern: the values of a matrix whose product dropped exact zeros, on the pattern analysed before."""
+    K, _ = _spd(120, seed=7)
+    P = pardiso.upper_csr(K)
+    A = P.copy()
+    A.data[::5] = 0.0
+    A.eliminate_zeros()
+    B = pardiso.on_pattern(A, P)
+    assert np.array_equal(B.indptr, P.indptr) and np.array_equal(B.indices, P.indices)
+    np.testing.assert_array_equal(B.toarray(), A.toarray())
+    with pytest.raises(FEError, match="outside the pattern"):
+        pardiso.on_pattern(P, A)
+
+
+@pytest.mark.parametrize("method", [pytest.param("pardiso", marks=needs_mkl), "superlu"])
+def test_pending_analysis_then_values_equals_one_factorization(method):
+    """schur_analysis on the pattern (all entries 1) while the values are computed, then factor(values): the same
+    Schur complement and solution as schur_system of the matrix."""
+    from fem.la.linsolve import schur_analysis
+
+    K, rng = _spd()
+    G = sp.random(20, K.shape[0], density=0.05, random_state=4, format="csr")
+    U = pardiso.bordered_upper(K, G.T.tocsr())
+    C = K.shape[0] + np.arange(20)
+    pattern = sp.csr_matrix((np.ones(U.nnz), U.indices, U.indptr), shape=U.shape)
+    pending = schur_analysis(pattern, C, method)
+    try:
+        sysm = pending.factor(U)
+    finally:
+        pending.close()
+    ref = schur_system(U, C, method, upper=True)
+    assert np.abs(sysm.schur - ref.schur).max() <= 1e-12 * np.abs(ref.schur).max()
+    f = rng.standard_normal(U.shape[0])
+    u = sysm.solve(f, lambda fc: np.linalg.solve(sysm.schur, fc))
+    u_ref = ref.solve(f, lambda fc: np.linalg.solve(ref.schur, fc))
+    assert np.abs(u - u_ref).max() <= 1e-10 * np.abs(u_ref).max()
 
 
 @pytest.mark.parametrize("case", ["canonical", "no diagonal", "unsorted"])
@@ -119,3 +199,21 @@ def test_vtu_has_all_fields(tmp_path):
     assert np.allclose(m.point_data["von_mises"], r.von_mises)
     assert np.array_equal(m.cell_data["body"][0], mesh.cell_body)
     assert m.cells[0].data.shape == (mesh.n_cells, 8)
+
+
+@needs_mkl
+def test_overlapped_and_serial_solves_agree(monkeypatch):
+    """fem.solve with the symbolic analysis overlapped (more than one kernel thread) and in turn (one): the same
+    displacements, pressures and Schur size (the analysed pattern holds every value's entry)."""
+    import fem.analysis as analysis
+
+    mesh, model, _ = hertz_line(elements_per_halfwidth=3.0, setup=ModelSetup(solver=SolverOptions("pardiso")))
+    runs = {}
+    for threads in (1, 2):
+        monkeypatch.setattr(analysis, "kernel_threads", lambda threads=threads: threads)
+        runs[threads] = solve(mesh, model)
+    a, b = runs[1], runs[2]
+    assert "analysis_s" in b.info.timings and "analysis_s" not in a.info.timings
+    assert a.info.schur_dofs == b.info.schur_dofs
+    assert np.abs(a.displacement - b.displacement).max() <= 1e-10 * np.abs(a.displacement).max()
+    assert a.pairs[0].max_pressure == pytest.approx(b.pairs[0].max_pressure, rel=1e-10)
