@@ -58,8 +58,8 @@ class MeshOptions:
     axial_contact_size: float | None = None  # [mm] of the axial levels at the contact; default contact_size
     neighbour_size: float | None = None  # [mm] profile size on the loaded side of the other teeth; default coarse
     axial_coarse_size: float | None = None  # [mm] largest axial level spacing of a graded member; default coarse
-    section_growth: float | None = None  # growth of the layers under the loaded fillet and along its root; default growth
-    depth_growth: float | None = None  # growth of the layers under the contact and the other flank; default section_growth
+    section_growth: float | None = None  # growth of the layers under the loaded fillet and its root; default growth
+    depth_growth: float | None = None  # growth of the layers under the contact and the other flank; default section
     axial_growth: float | None = None  # growth of the axial levels away from the zones; default growth
     back_size: float | None = None  # [mm] layer under the loaded tooth's other flank and fillet; default fillet_size
 

@@ -1,6 +1,7 @@
 """Grading away from the zones (issue 26, item 2): the split surface under the fillet graded like the base, the axial
-spacing outside the zones (``axial_coarse_size``, ``axial_growth``) and the growth across the loaded tooth (``section_growth``
-under the loaded fillet, ``depth_growth`` under the contact and the other flank, from ``back_size`` there).
+spacing outside the zones (``axial_coarse_size``, ``axial_growth``) and the growth across the loaded tooth
+(``section_growth`` under the loaded fillet, ``depth_growth`` under the contact and the other flank, from
+``back_size``).
 
 The reference is the plan's own distributions (:func:`mesher.body.plan_tooth`) and the definition of the size field
 (:mod:`mesher.grading`: every element at most its target size); the fillet stress they buy is measured in

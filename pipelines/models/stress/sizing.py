@@ -278,7 +278,8 @@ def _sizes(rules: SizeRules, m: float, contact: float, axial: float, ext_u: floa
                             max(coarse, min(AXIAL_COARSE * coarse, AXIAL_COARSE_MAX * m)), axial),
                         section_growth=rules.section_growth if rules.section_growth is not None else
                         _refined(SECTION_GROWTH, r), axial_growth=rules.axial_growth,
-                        depth_growth=rules.depth_growth if rules.depth_growth is not None else _refined(DEPTH_GROWTH, r),
+                        depth_growth=rules.depth_growth if rules.depth_growth is not None else
+                        _refined(DEPTH_GROWTH, r),
                         back=min(rules.back / r, coarse) if rules.back is not None else fillet)
 
 

@@ -1,4 +1,5 @@
-"""The grading away from the zones of the stress models' sizes (issue 26, item 2; pipelines.models.stress.sizing (G1)-(G5)).
+"""The grading away from the zones of the stress models' sizes (issue 26, item 2;
+pipelines.models.stress.sizing (G1)-(G6)).
 
 The rules are those of the module docstring; the fillet stress they buy is measured in docs/benchmarks.md ("Third
 round: grading away from the zones") and asserted by test_sizing_targets.py (``make bench``).
