@@ -58,7 +58,10 @@ class MeshOptions:
     axial_contact_size: float | None = None  # [mm] of the axial levels at the contact; default contact_size
     neighbour_size: float | None = None  # [mm] profile size on the loaded side of the other teeth; default coarse
     axial_coarse_size: float | None = None  # [mm] largest axial level spacing of a graded member; default coarse
-    section_growth: float | None = None  # growth across the loaded tooth and along its root; default growth
+    section_growth: float | None = None  # growth of the layers under the loaded fillet and its root; default growth
+    depth_growth: float | None = None  # growth of the layers under the contact and the other flank; default section
+    axial_growth: float | None = None  # growth of the axial levels away from the zones; default growth
+    back_size: float | None = None  # [mm] layer under the loaded tooth's other flank and fillet; default fillet_size
 
     def __post_init__(self):
         if not (isinstance(self.teeth, int) and self.teeth >= 1):
@@ -70,8 +73,12 @@ class MeshOptions:
                 raise InputError(f"mesh.{k}_mm", v, "> 0 mm")
         if not (1.0 <= self.growth <= 3.0):
             raise InputError("mesh.growth", self.growth, "in [1, 3]")
-        if self.section_growth is not None and not (1.0 <= self.section_growth <= 3.0):
-            raise InputError("mesh.section_growth", self.section_growth, "in [1, 3]")
+        for k in ("section_growth", "depth_growth", "axial_growth"):
+            v = getattr(self, k)
+            if v is not None and not (1.0 <= v <= 3.0):
+                raise InputError(f"mesh.{k}", v, "in [1, 3]")
+        if self.back_size is not None and not (self.back_size > 0 and math.isfinite(self.back_size)):
+            raise InputError("mesh.back_size_mm", self.back_size, "> 0 mm")
         if self.gap is not None and not (self.gap >= 0):
             raise InputError("mesh.gap_mm", self.gap, ">= 0 mm")
 
@@ -91,11 +98,15 @@ class MeshOptions:
         rim = self.rim_depth if self.rim_depth is not None else 3.0 * m
         nb = min(self.neighbour_size, coarse) if self.neighbour_size is not None else coarse
         ac = self.axial_coarse_size if self.axial_coarse_size is not None else coarse
+        qs = self.section_growth if self.section_growth is not None else self.growth
         if ac < axial:
             raise InputError("mesh.axial_coarse_size_mm", ac, f">= axial_contact_size_mm {axial:g}")
         return {"coarse": coarse, "contact": contact, "fillet": fillet, "rim": rim, "growth": self.growth, "axial": axial,
                 "neighbour": nb, "axial_coarse": ac,
-                "section_growth": self.section_growth if self.section_growth is not None else self.growth}
+                "section_growth": qs,
+                "depth_growth": self.depth_growth if self.depth_growth is not None else qs,
+                "axial_growth": self.axial_growth if self.axial_growth is not None else self.growth,
+                "back": min(self.back_size, coarse) if self.back_size is not None else fillet}
 
 
 @dataclass(frozen=True)
@@ -143,7 +154,8 @@ def plan_tooth(geom: ToothGeometry, sz: dict, z_ref: float, focus: Focus | None,
     """
     g = geom.gear
     c, q = sz["coarse"], sz["growth"]
-    qs = sz["section_growth"]  # across the tooth and along the root: bending only, no contact
+    qs = sz["section_growth"]  # under the loaded fillet and along the root: bending only, no contact
+    qd = sz["depth_growth"]  # under the contact (Hertz) and under the other flank
     flank_t = {s: geom.flank_table(s, z_ref) for s in SIDES}
     fil_t = {s: geom.fillet_table(s, z_ref) for s in SIDES}
     root_t = {s: geom.root_table(s, z_ref) for s in SIDES}
@@ -206,8 +218,11 @@ def plan_tooth(geom: ToothGeometry, sz: dict, z_ref: float, focus: Focus | None,
     for s in SIDES:
         L = base_l[s]
         if loaded:
-            h = sz["contact"] if s == focus.side else sz["fillet"]
-            half[s] = distribute(L, SizeField(c, h, L, qs), nmin=2)
+            if s == focus.side:  # the finer of the Hertz layers under the contact and the layers under the fillet
+                hfield = MinField((SizeField(c, sz["contact"], L, qd), SizeField(c, sz["fillet"], L, qs)))
+            else:  # under the other flank and fillet: bending only
+                hfield = SizeField(c, sz["back"], L, qd)
+            half[s] = distribute(L, hfield, nmin=2)
         else:
             half[s] = uniform(count(L, SizeField(c), 2))
     u_tip = {s: flank_t[s][0][-1] for s in SIDES}
@@ -359,9 +374,10 @@ def plan_gear(gear: Gear, opts: MeshOptions = MeshOptions(), centre: int = 0, fo
             zf = SizeField(sz["coarse"])
         else:
             ac = sz["axial_coarse"]
-            zf = SizeField(ac, sz["axial"], z_ref + 0.5 * B, sz["growth"], fc.extent_z)
+            qz = sz["axial_growth"]
+            zf = SizeField(ac, sz["axial"], z_ref + 0.5 * B, qz, fc.extent_z)
             if ex:
-                zf = MinField((zf,) + tuple(SizeField(ac, sz["axial"], clamp(f.z) + 0.5 * B, sz["growth"],
+                zf = MinField((zf,) + tuple(SizeField(ac, sz["axial"], clamp(f.z) + 0.5 * B, qz,
                                                       f.extent_z) for _, f in ex))
         z = -0.5 * B + B * distribute(B, zf, nmin=2, pin=fc is not None)
         pinned = set()

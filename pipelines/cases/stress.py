@@ -34,7 +34,7 @@ from pipelines.cases.rating import read_rating, with_rating
 from pipelines.models.stress.case import MODELS, StressCase
 from pipelines.models.stress.model import FESettings
 from pipelines.models.stress.scene import PHASES
-from pipelines.models.stress.sizing import SIZING, SizeRules
+from pipelines.models.stress.sizing import GROWTH, SIZING, SizeRules
 
 __all__ = ["read_stress_case", "read_train_stress", "read_unloaded_pair", "read_torque", "torque_record", "check_unit_load", "UNIT_LOAD_MAX_MPA", "TORQUE_KEYS"]
 
@@ -111,7 +111,7 @@ def _read_mesh(t: Table | None) -> SizeRules:
         axial=t.get("axial_contact_size_mm", float, None, **pos),
         fillet=t.get("fillet_size_mm", float, None, **pos),
         neighbour=t.get("neighbour_size_mm", float, None, **pos),
-        growth=t.get("growth", float, 1.3, lo=1.05, hi=3.0),
+        growth=t.get("growth", float, GROWTH, lo=1.05, hi=3.0),
         zone=t.get("zone", float, 1.2, lo=0.0, hi=5.0),
         neighbour_reach=_um(t.get("neighbour_reach_um", float, None, lo=0.0, hi=1000.0)),
         sizing=t.get("sizing", str, "loaded", choices=SIZING),

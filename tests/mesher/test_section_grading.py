@@ -1,5 +1,7 @@
 """Grading away from the zones (issue 26, item 2): the split surface under the fillet graded like the base, the axial
-spacing outside the zones (``axial_coarse_size``) and the growth across the loaded tooth (``section_growth``).
+spacing outside the zones (``axial_coarse_size``, ``axial_growth``) and the growth across the loaded tooth
+(``section_growth`` under the loaded fillet, ``depth_growth`` under the contact and the other flank, from
+``back_size``).
 
 The reference is the plan's own distributions (:func:`mesher.body.plan_tooth`) and the definition of the size field
 (:mod:`mesher.grading`: every element at most its target size); the fillet stress they buy is measured in
@@ -62,9 +64,41 @@ def test_section_growth_sets_the_layers_across_the_loaded_tooth():
     assert fast.cells < slow.cells
 
 
+def test_fillet_layers_and_depth_layers_are_graded_apart():
+    """The loaded side's layers follow the finer of the Hertz field (contact size, ``depth_growth``) and the fillet
+    field (fillet size, ``section_growth``); the other side's follow ``back_size`` and ``depth_growth``."""
+    g, focus = gear("sun"), FOCI["sun"]
+    s, b = focus.side, -focus.side
+
+    def loaded(**kw):
+        p = plan_gear(g, MeshOptions(teeth=3, **{**COARSE, **kw}), focus=focus)
+        return p, p.members[0].plans[p.centre_index]
+
+    p0, t0 = loaded(section_growth=1.5, depth_growth=1.5)
+    _, slow = loaded(section_growth=1.1, depth_growth=1.5)
+    assert slow.n_half(s) > t0.n_half(s) and slow.n_half(b) == t0.n_half(b)  # the fillet field: the loaded side only
+    _, deep = loaded(section_growth=1.5, depth_growth=2.0)
+    assert deep.n_half(b) < t0.n_half(b) and deep.n_half(s) <= t0.n_half(s)
+    _, back = loaded(section_growth=1.5, depth_growth=1.5, back_size=0.6)
+    assert back.n_half(b) < t0.n_half(b) and back.n_half(s) == t0.n_half(s)
+    # every layer on the loaded side at most the finer field's size at its outer end (depth d from the flank)
+    sz = p0.sizes
+    L = ToothGeometry(g, sz["rim"]).base_length(s, 0.0)
+    x = (1.0 - slow.half[s][::-1]) * L  # depths from the flank, 0 -> L
+    h = np.diff(x)
+    field = np.minimum(sz["contact"] + 0.5 * x[1:], sz["fillet"] + 0.1 * x[1:])
+    assert np.all(h <= np.minimum(field, sz["coarse"]) + 1e-9)
+    # the axial levels away from the zone grow by axial_growth
+    fast = plan_gear(g, MeshOptions(teeth=3, axial_growth=2.0, **COARSE), focus=focus).members[0].z
+    assert len(fast) < len(p0.members[0].z)
+
+
 @pytest.mark.parametrize("kw, key", [(dict(axial_coarse_size=0.5), "mesh.axial_coarse_size_mm"),
                                      (dict(axial_coarse_size=-1.0), "mesh.axial_coarse_size_mm"),
-                                     (dict(section_growth=0.9), "mesh.section_growth")])
+                                     (dict(section_growth=0.9), "mesh.section_growth"),
+                                     (dict(depth_growth=3.5), "mesh.depth_growth"),
+                                     (dict(axial_growth=0.5), "mesh.axial_growth"),
+                                     (dict(back_size=0.0), "mesh.back_size_mm")])
 def test_bad_grading_options_name_their_key(kw, key):
     with pytest.raises(InputError, match=key.replace(".", r"\.")):
         MeshOptions(**{**COARSE, **kw}).sizes(gear("sun"))

@@ -147,7 +147,8 @@ def part_options(p) -> MeshOptions:
     s = p.sizes
     return MeshOptions(teeth=s.teeth, rim_depth=s.rim, coarse_size=s.coarse, contact_size=s.contact, fillet_size=s.fillet,
                        growth=s.growth, axial_contact_size=s.axial, neighbour_size=s.neighbour,
-                       axial_coarse_size=s.axial_coarse, section_growth=s.section_growth)
+                       axial_coarse_size=s.axial_coarse, section_growth=s.section_growth, axial_growth=s.axial_growth,
+                       back_size=s.back, depth_growth=s.depth_growth)
 
 
 def estimate_resources(scene: Scene) -> ResourceEstimate:

@@ -3,19 +3,29 @@ and the grading away from the zones (issue 26, item 2).
 
 Grading away from the zones. The fillet stress (the largest nodal principal stress on the loaded teeth's fillets,
 :mod:`pipelines.models.stress.headline`) converges with the element size along the fillet arc :math:`h_f` and the
-thickness of the element layers normal to the fillet; it barely depends on the axial spacing away from the contact
-zone, on the growth of the sizes across the tooth toward its mid-surface, or on the coarse size of the rest
-(docs/benchmarks.md, "Third round: grading away from the zones", measured on the crowned pair). Hence, at refine 1,
+thickness of the element layers normal to the fillet, on both sides of the tooth; it barely depends on the axial
+spacing away from the contact zone, on the growth of the sizes along the profile and the axis away from the zones, or
+on the coarse size of the rest (docs/benchmarks.md, "Third round: grading away from the zones" and "Fourth round: the
+fillet target", measured on the crowned pair). With :math:`r` = ``refine``, sizes at refine 1 divided by r:
 
 .. math::
-    h_f = 0.05\,m \quad (G1), \qquad h_{z,max} = \max(h_{coarse},\ \min(2\,h_{coarse},\ 1.5\,m)) \quad (G2),
-    \qquad q_{section} = \max(1.5, q) \quad (G3)
+    h_f = 0.045\,m \quad (G1), \qquad h_{z,max} = \max(h_{coarse},\ \min(2\,h_{coarse},\ 1.5\,m)) \quad (G2),
+    \qquad q = 1.5 \quad (G4),
 
-(G1) the fillet arc of the loaded teeth (was 0.1 m), (G2) the largest axial spacing of a graded member outside its
-zones (was the coarse size; 2 coarse sizes at refine >= 1, never beyond the 1.5 m measured at refine 1, so coarser
-models keep their coarse size: at refine 0.3 a 5 m spacing moved the conventional twin's torque balance past 1e-3),
-(G3) the growth across the loaded tooth (flank and fillet toward the mid-surface) and
-along its root (was q, the growth of the contact grading, 1.3). The layers under the fillet are graded like those
+.. math::
+    q_{s} = 1 + 0.3 / r \quad (G3), \qquad q_{d} = 1 + 0.5 / r \quad (G5), \qquad
+    h(d) = \min(h_{coarse},\ h_c + (q_d - 1)\,d,\ h_f + (q_s - 1)\,d) \quad (G6)
+
+(G1) the fillet arc of the loaded teeth (0.1 m before the third round, 0.05 m before the fourth), (G2) the largest
+axial spacing of a graded member outside its zones (was the coarse size; 2 coarse sizes at refine >= 1, never beyond
+the 1.5 m measured at refine 1, so coarser models keep their coarse size: at refine 0.3 a 5 m spacing moved the
+conventional twin's torque balance past 1e-3), (G4) the growth of the flank profile and of the axial levels away from
+the zones, ``mesh.growth`` (was 1.3: the zones keep the contact sizes, the pressure outside them is nil);
+(G3) the growth of the layers under the loaded fillet (toward the mid-surface) and along its root, (G5) of the
+layers under the contact (Hertz) and under the other flank and fillet of the loaded tooth (from ``back`` = h_f):
+growth ratios refined like the sizes, the slope q - 1 of the size field divided by r (was 1.5 for both at every
+refine); (G6) the layer size at depth d under the loaded flank and fillet, the finer of the Hertz field (contact
+size h_c) and the fillet field (:mod:`mesher.body`, ``plan_tooth``). The layers under the fillet are graded like those
 under the flank (:mod:`mesher.tooth`, Step 3).
 """
 
@@ -34,7 +44,7 @@ from tca.geometry.gear import Gear
 from tca.pair.analysis import ContactKind
 
 __all__ = ["HertzContact", "hertz_contact", "SizeRules", "ContactSizes", "contact_sizes", "zone_sizes", "unloaded_sizes",
-           "NEIGHBOUR", "FILLET", "AXIAL_COARSE", "AXIAL_COARSE_MAX", "SECTION_GROWTH",
+           "NEIGHBOUR", "FILLET", "AXIAL_COARSE", "AXIAL_COARSE_MAX", "SECTION_GROWTH", "DEPTH_GROWTH", "GROWTH",
            "SIZING"]
 
 # ---------------------------------------------------------------------------------------------- Hertz and sizes
@@ -103,10 +113,12 @@ def hertz_contact(lam: tuple, load: float, material: Material, length: float) ->
 
 
 NEIGHBOUR = 0.1  # default profile size on the other teeth's loaded flanks [module] (converged load share, see README)
-FILLET = 0.05  # default size along the loaded teeth's fillets [module] (G1)
+FILLET = 0.045  # default size along the loaded teeth's fillets [module] (G1)
 AXIAL_COARSE = 2.0  # largest axial spacing of a graded member outside its zones [coarse sizes] (G2)
 AXIAL_COARSE_MAX = 1.5  # ... and never beyond this [module] unless the coarse size is (G2)
-SECTION_GROWTH = 1.5  # least growth across the loaded tooth and along its root (G3)
+SECTION_GROWTH = 1.3  # growth of the layers under the loaded fillet and along its root at refine 1 (G3)
+DEPTH_GROWTH = 1.5  # growth of the layers under the contact and under the other flank at refine 1 (G5)
+GROWTH = 1.5  # default mesh.growth: the flank profile and the axial levels away from the zones (G4)
 
 
 C_PRIME = 14.0  # [N/(mm um)] single stiffness of a solid spur pair, ISO 6336-1 (order of magnitude of c')
@@ -134,13 +146,16 @@ class SizeRules:
     axial: float | None = None
     fillet: float | None = None
     neighbour: float | None = None
-    growth: float = 1.3
+    growth: float = GROWTH
     zone: float = 1.2
     neighbour_reach: float | None = None  # [mm] neighbouring pairs closer than this (TCA) get a focus; None: reach()
     sizing: str = "loaded"  # 'loaded': zones from the loaded estimate; 'tca': from the unloaded TCA (before issue 26)
     remesh: bool = False  # remesh once when the FE loads a pair the estimate left unloaded (pipelines.models.stress.run)
     axial_coarse: float | None = None  # [mm] largest axial spacing outside the zones (before refine); None: (G2)
-    section_growth: float | None = None  # growth across the loaded tooth and along its root; None: (G3)
+    section_growth: float | None = None  # growth under the loaded fillet and along its root; None: (G3)
+    depth_growth: float | None = None  # growth under the contact and the other flank; None: (G5)
+    axial_growth: float | None = None  # growth of the axial levels away from the zones; None: growth (G4)
+    back: float | None = None  # [mm] layer under the loaded tooth's other flank and fillet (before refine); None: h_f
 
     def __post_init__(self):
         if not (0.1 <= self.refine <= 10.0):
@@ -163,8 +178,12 @@ class SizeRules:
             raise InputError("mesh.remesh", self.remesh, "true or false")
         if self.axial_coarse is not None and not (self.axial_coarse > 0 and math.isfinite(self.axial_coarse)):
             raise InputError("mesh.axial_coarse_size_mm", self.axial_coarse, "> 0 mm")
-        if self.section_growth is not None and not (1.05 <= self.section_growth <= 3.0):
-            raise InputError("mesh.section_growth", self.section_growth, "in [1.05, 3]")
+        for k in ("section_growth", "depth_growth", "axial_growth"):
+            v = getattr(self, k)
+            if v is not None and not (1.05 <= v <= 3.0):
+                raise InputError(f"mesh.{k}", v, "in [1.05, 3]")
+        if self.back is not None and not (self.back > 0 and math.isfinite(self.back)):
+            raise InputError("mesh.back_size_mm", self.back, "> 0 mm")
 
     def reach(self, load: float, face_width: float) -> float:
         r"""Separation [mm] below which a neighbouring pair of teeth is meshed like the loaded one.
@@ -195,7 +214,10 @@ class ContactSizes:
     extent_z: float  # zone half-length along the axis
     teeth: int = 3
     axial_coarse: float | None = None  # largest axial spacing outside the zones (G2); None: coarse
-    section_growth: float | None = None  # growth across the loaded tooth and along its root (G3); None: growth
+    section_growth: float | None = None  # growth under the loaded fillet and along its root (G3); None: growth
+    axial_growth: float | None = None  # growth of the axial levels away from the zones (G4); None: growth
+    depth_growth: float | None = None  # growth under the contact and the other flank (G5); None: section_growth
+    back: float | None = None  # layer under the loaded tooth's other flank and fillet; None: fillet
 
 
 def contact_sizes(rules: SizeRules, gear: Gear, hz: HertzContact, angle: float, kind: int,
@@ -254,7 +276,17 @@ def _sizes(rules: SizeRules, m: float, contact: float, axial: float, ext_u: floa
                         rules.growth, ext_u, ext_z, rules.teeth,
                         max(rules.axial_coarse / r if rules.axial_coarse is not None else
                             max(coarse, min(AXIAL_COARSE * coarse, AXIAL_COARSE_MAX * m)), axial),
-                        rules.section_growth if rules.section_growth is not None else max(SECTION_GROWTH, rules.growth))
+                        section_growth=rules.section_growth if rules.section_growth is not None else
+                        _refined(SECTION_GROWTH, r), axial_growth=rules.axial_growth,
+                        depth_growth=rules.depth_growth if rules.depth_growth is not None else
+                        _refined(DEPTH_GROWTH, r),
+                        back=min(rules.back / r, coarse) if rules.back is not None else fillet)
+
+
+def _refined(q: float, r: float) -> float:
+    """A growth ratio q at refine 1 at refine r: the slope q - 1 of the size field divided by r like the sizes
+    (G3, G5), within the mesher's [1.05, 3]."""
+    return min(max(1.0 + (q - 1.0) / r, 1.05), 3.0)
 
 
 def zone_sizes(rules: SizeRules, gear: Gear, line: bool, zones: tuple, ext_u: float, ext_z: float) -> ContactSizes:

@@ -5,6 +5,7 @@ well under a minute and a half on the 2-core machine). The measured numbers quot
 assertions were taken with these settings (``uptime`` load 2-4, other engineers running).
 """
 
+import dataclasses
 import json
 import math
 import subprocess
@@ -145,8 +146,12 @@ def new_design(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def conventional(tmp_path_factory):
-    return run_stress(case("stress_part1_conventional", **{"mesh.refine": 0.3, "mesh.teeth": 1}),
-                      tmp_path_factory.mktemp("conv")).summary
+    # the grading before issue 26's fourth round (growth 1.3, the layers across the tooth growing by 1.5): this coarse
+    # model's kinematic torque balance is 9.73e-4 with it and 1.04e-3 with the defaults of the fourth round at refine
+    # 0.3 (growth 1.5 away from the zones: 1.042e-3 alone; docs/benchmarks.md "Fourth round: the fillet target")
+    c = case("stress_part1_conventional", **{"mesh.refine": 0.3, "mesh.teeth": 1, "mesh.growth": 1.3})
+    c = dataclasses.replace(c, mesh=dataclasses.replace(c.mesh, section_growth=1.5, depth_growth=1.5))
+    return run_stress(c, tmp_path_factory.mktemp("conv")).summary
 
 
 def test_new_design_shares_the_load_between_members_without_edge_contact(new_design):
