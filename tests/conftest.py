@@ -1,14 +1,23 @@
-"""Test-session setup: images are rendered off screen (EGL, no display), as the ``gearfe`` command does;
-the fixture ``shipped`` gives a shipped case with overrides (:mod:`tests.support.shipped`)."""
+"""Test-session setup: images are rendered off screen (EGL, no display), as the ``gearfe`` command does, and
+cheaper than a user's (below); the fixture ``shipped`` gives a shipped case with overrides
+(:mod:`tests.support.shipped`)."""
 
+import os
 import types
 
 import pytest
 
 from pipelines.render import offscreen
+from pipelines.render.settings import DPI_SCALE, PNG_COMPRESSION, SAMPLES
 
 from tests.support import shipped as _shipped
 
+# Pictures in the suite (pipelines/render/settings.py): no multisampling of the VTK images, matplotlib plots at half
+# the dpi, PNGs at zlib level 1 (lossless). The tests check that pictures are made, named, not blank and coloured
+# where the load is; tests/pipelines/render/test_settings.py checks the settings themselves at the users' defaults.
+# Set before any test (subprocesses of `gearfe` inherit them); a value already in the environment is kept.
+for _name, _value in ((SAMPLES, "0"), (DPI_SCALE, "0.5"), (PNG_COMPRESSION, "1")):
+    os.environ.setdefault(_name, _value)
 offscreen()
 
 
