@@ -3,12 +3,16 @@ cheaper than a user's (below); the fixture ``shipped`` gives a shipped case with
 (:mod:`tests.support.shipped`)."""
 
 import os
+import shutil
+import tempfile
 import types
+from pathlib import Path
 
 import pytest
 
 from pipelines.render import offscreen
 from pipelines.render.settings import DPI_SCALE, PNG_COMPRESSION, SAMPLES
+from tca.pair.analysis import pair_tca_memo
 
 from tests.support import shipped as _shipped
 
@@ -19,6 +23,23 @@ from tests.support import shipped as _shipped
 for _name, _value in ((SAMPLES, "0"), (DPI_SCALE, "0.5"), (PNG_COMPRESSION, "1")):
     os.environ.setdefault(_name, _value)
 offscreen()
+
+# A pair's TCA is computed once per session, not once per process: the pair TCA's memo (tca.pair.memo) shares its
+# results through a folder made by the controlling process (inherited by the xdist workers through the environment,
+# and by the processes they fork: gearfe compare's second design) and removed at its end. The same inputs give the same
+# result wherever it is computed; what a test checks of a TCA is unchanged. Part 1's regulation (18 pair TCAs of
+# 1-2 s per design) is the same in test_regulation.py, test_stress.py, test_compare.py and the CLI tests.
+TCA_STORE = "GEARFE_TEST_TCA_STORE"
+_made_store = TCA_STORE not in os.environ and "PYTEST_XDIST_WORKER" not in os.environ
+if _made_store:
+    os.environ[TCA_STORE] = tempfile.mkdtemp(prefix="gearfe-tests-tca-")
+if os.environ.get(TCA_STORE):
+    pair_tca_memo().share(Path(os.environ[TCA_STORE]))
+
+
+def pytest_unconfigure(config):
+    if _made_store:
+        shutil.rmtree(os.environ.pop(TCA_STORE), ignore_errors=True)
 
 
 # `make test` runs two workers, one test file each (-n 2 --dist loadfile --no-loadscope-reorder), in the order
