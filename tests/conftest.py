@@ -29,6 +29,7 @@ offscreen()
 # and by the processes they fork: gearfe compare's second design) and removed at its end. The same inputs give the same
 # result wherever it is computed; what a test checks of a TCA is unchanged. Part 1's regulation (18 pair TCAs of
 # 1-2 s per design) is the same in test_regulation.py, test_stress.py, test_compare.py and the CLI tests.
+# GEARFE_TEST_TCA_STORE= (empty) turns the sharing off: each process computes its own, as before.
 TCA_STORE = "GEARFE_TEST_TCA_STORE"
 _made_store = TCA_STORE not in os.environ and "PYTEST_XDIST_WORKER" not in os.environ
 if _made_store:
