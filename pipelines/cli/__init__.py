@@ -26,6 +26,7 @@ from pipelines.errors import USER_ERRORS
 
 from pipelines.cli.interrupt import Terminated, check_interrupted, install, restore
 from pipelines.render import offscreen
+from pipelines.render.settings import picture_settings
 
 __all__ = ["main", "SUBCOMMANDS", "Terminated", "check_interrupted", "EXIT_INPUT", "EXIT_CHECK", "EXIT_BUG", "EXIT_SIGINT",
            "EXIT_SIGTERM"]
@@ -78,6 +79,7 @@ def main(argv: list[str] | None = None) -> int:
     where = f"gearfe {args.command}"
     old = install()
     try:
+        picture_settings()  # GEARFE_RENDER_SAMPLES, GEARFE_PLOT_DPI_SCALE, GEARFE_PNG_COMPRESSION: checked before any work
         if hasattr(args, "out"):
             from pipelines.cli.outdir import check_out
 

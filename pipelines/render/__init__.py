@@ -1,7 +1,9 @@
 """Rendering: every plot and image of the pipelines. Matplotlib plots of TCA results and the one
 ``savefig`` (:mod:`.plots`), maps of FE fields (:mod:`.maps`), the face-gear train's figures
 (:mod:`.face`), the loaded TCA's (:mod:`.ltca`), a stress sweep through the cycle (:mod:`.sweep`);
-off-screen pyvista images of FE results (:mod:`.images`, :mod:`.views`); HTML pages (:mod:`.html`).
+off-screen pyvista images of FE results (:mod:`.images`, :mod:`.views`); HTML pages (:mod:`.html`); how pictures are
+rendered and written (anti-aliasing samples, plot resolution, PNG compression: :mod:`.settings`, from the
+environment, defaults the pictures' usual look).
 
 Nothing here changes global state at import. Without a display call :func:`offscreen` once before
 rendering (the ``gearfe`` command and the test suite do)::

@@ -19,6 +19,7 @@ from fem.mesh.hexmesh import HexMesh
 from tca.errors import InputError
 
 from pipelines.render import offscreen
+from pipelines.render.settings import apply_samples, write_png
 
 __all__ = ["offscreen", "to_pyvista", "Zone", "Scalars", "render_contact_zone", "render_overview", "image_is_blank"]
 
@@ -60,7 +61,7 @@ class Scalars:
 
 
 def _plotter(size):
-    p = pv.Plotter(off_screen=True, window_size=list(size))
+    p = apply_samples(pv.Plotter(off_screen=True, window_size=list(size)))
     p.set_background("white")
     return p
 
@@ -96,7 +97,7 @@ def render_contact_zone(grid: pv.UnstructuredGrid, path: Path, zone: Zone, scala
         p.camera.position = focus + normal * radius * 4.0
         p.camera.up = np.cross(up, normal)
         p.camera.view_angle = 2 * np.degrees(np.arctan(1.15 * radius / (4.0 * radius)))
-        p.screenshot(str(path))
+        write_png(p, path)
     finally:
         p.close()
     return Path(path)
@@ -127,7 +128,7 @@ def render_overview(grid: pv.UnstructuredGrid, field: str, path: Path, *, title:
         else:
             p.view_isometric()
         p.reset_camera()
-        p.screenshot(str(path))
+        write_png(p, path)
     finally:
         p.close()
     return Path(path)

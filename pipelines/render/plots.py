@@ -15,6 +15,8 @@ import numpy as np  # noqa: E402
 
 from tca.pair.analysis import ARCSEC, ContactKind, PairTCAResult, ellipse_outlines  # noqa: E402
 
+from pipelines.render.settings import picture_settings  # noqa: E402
+
 __all__ = ["plot_pair_te", "plot_contact_paths", "plot_position_te", "savefig", "side_by_side"]
 
 
@@ -22,12 +24,15 @@ def savefig(fig, path: Path, dpi: int = 130, tight: bool = True) -> Path:
     """Save and close a figure (plots are made in loops: never leak figures).
 
     The file is written under a temporary name and renamed into place: a killed run (a sweep) leaves
-    no half PNG. ``tight=False`` for figures with a constrained layout: a tight bounding box draws
-    them twice.
+    no half PNG. ``dpi`` is scaled and the PNG compressed as :func:`pipelines.render.settings.picture_settings`
+    says (by default as given, zlib level 6). ``tight=False`` for figures with a constrained layout: a tight
+    bounding box draws them twice.
     """
     path = Path(path)
     tmp = path.with_name(f".{path.stem}.tmp{path.suffix}")
-    fig.savefig(tmp, dpi=dpi, bbox_inches="tight" if tight else None)
+    s = picture_settings()
+    png = {"pil_kwargs": {"compress_level": s.png_compression}} if path.suffix.lower() == ".png" else {}
+    fig.savefig(tmp, dpi=s.dpi(dpi), bbox_inches="tight" if tight else None, **png)
     plt.close(fig)
     os.replace(tmp, path)
     return path

@@ -31,6 +31,8 @@ import pyvista as pv
 
 from tca.errors import InputError
 
+from pipelines.render.settings import apply_samples, write_png
+
 __all__ = ["CLIP_PERCENTILE", "ABOVE_COLOR", "ColourRange", "clip_range", "Mark", "Frame", "Colouring", "render_teeth",
            "render_deformed", "deformation_scale"]
 
@@ -181,7 +183,7 @@ def render_teeth(parts: pv.UnstructuredGrid, flank: pv.UnstructuredGrid, path: P
         raise InputError("frame.normal", None, "the contact normal (the flank view looks along it)")
     axis, up, normal, cut = _unit(frame.axis), np.asarray(frame.up, float), _unit(frame.normal), frame.cut
     aspect = 0.5 * size[0] / size[1]
-    p = pv.Plotter(off_screen=True, window_size=list(size), shape=(1, 2), border=False)
+    p = apply_samples(pv.Plotter(off_screen=True, window_size=list(size), shape=(1, 2), border=False))
     try:
         p.set_background("white")
         p.subplot(0, 0)
@@ -208,7 +210,7 @@ def render_teeth(parts: pv.UnstructuredGrid, flank: pv.UnstructuredGrid, path: P
             p.add_point_labels(np.array([x + 0.25 * hf * side + 0.05 * hf * normal]), [m.label], font_size=12,
                                text_color="black", point_size=1, shape_opacity=0.6, always_visible=True, show_points=False)
         _look(p, flank.center if flank.n_cells else parts.center, -normal, axis, hf)
-        p.screenshot(str(path))
+        write_png(p, path)
     finally:
         p.close()
     return Path(path)
@@ -235,7 +237,7 @@ def render_deformed(parts: pv.UnstructuredGrid, path: Path, frame: Frame, colour
     warped = _surface(half).warp_by_vector("displacement", factor=factor)
     outline = parts.slice(normal=axis, origin=cut + 1e-3 * axis).extract_feature_edges(
         boundary_edges=True, feature_edges=False, non_manifold_edges=False, manifold_edges=False)
-    p = pv.Plotter(off_screen=True, window_size=list(size))
+    p = apply_samples(pv.Plotter(off_screen=True, window_size=list(size)))
     try:
         p.set_background("white")
         p.add_mesh(warped, scalars=field, cmap="jet", clim=(cr.lo, cr.hi), above_color=ABOVE_COLOR if cr.clipped else None,
@@ -246,7 +248,7 @@ def render_deformed(parts: pv.UnstructuredGrid, path: Path, frame: Frame, colour
         p.add_text(caption or f"displacements x {factor:.3g}", position="upper_left", font_size=10, color="black")
         h = _half_height(parts, axis, up, 0.8 * size[0] / size[1])
         _look(p, np.asarray(parts.center) - 0.08 * h * np.cross(axis, _unit(up)), -axis, up, h)
-        p.screenshot(str(path))
+        write_png(p, path)
     finally:
         p.close()
     return Path(path)

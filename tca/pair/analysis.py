@@ -48,7 +48,7 @@ from tca.pair.result import ContactKind, PairTCAResult, ReferencePairSolution, T
 from tca.pair.transitions import Branches, extremes, transitions
 from tca.units import ARCSEC
 
-__all__ = ["TCAOptions", "ContactKind", "ReferencePairSolution", "PairTCAResult", "run_pair_tca", "solve_reference_pair", "bounded_pass", "ellipse_outlines",
+__all__ = ["TCAOptions", "ContactKind", "ReferencePairSolution", "PairTCAResult", "run_pair_tca", "pair_tca_memo", "solve_reference_pair", "bounded_pass", "ellipse_outlines",
            "ARCSEC"]
 
 
@@ -173,3 +173,8 @@ def _stack_points(pts):
 
 
 _MEMO = Memo(_compute_pair_tca, size=8)
+
+
+def pair_tca_memo() -> Memo:
+    """The memo of :func:`run_pair_tca` (to share it between processes: :meth:`tca.pair.memo.Memo.share`)."""
+    return _MEMO

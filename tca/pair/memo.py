@@ -15,13 +15,24 @@ object) has no fingerprint and is simply computed.
 A stored result is shared by every caller: its arrays are made read-only (``ndarray.flags.writeable``
 False, through dataclass fields, tuples, lists and dicts), so a caller that would modify it in place
 fails at once instead of changing the result seen by the next caller.
+
+Shared between processes (:meth:`Memo.share`): results are also kept as files in a folder, one pickle per key
+named by the SHA-256 of the pickled key, written under a temporary name and renamed into place (a reader never
+sees half a file), so processes that share the folder (the test suite's two workers and the processes they fork)
+compute a result once. A key whose pickle does not read back equal (a ``nan`` in the inputs) is not shared. The
+folder belongs to whoever shares it: results are not checked against the code that wrote them, so a folder must
+not outlive the code (the test suite makes one per session and removes it).
 """
 
 from __future__ import annotations
 
 import dataclasses
 import enum
+import hashlib
+import os
+import pickle
 from collections import OrderedDict
+from pathlib import Path
 from typing import Callable, Hashable
 
 import numpy as np
@@ -81,6 +92,22 @@ class Memo:
         self.compute, self.size = compute, size
         self._store: OrderedDict = OrderedDict()
         self.hits = self.misses = 0
+        self.folder: Path | None = None
+
+    def share(self, folder: Path | None) -> None:
+        """Keep results also as files in ``folder``, read by every process that shares it (module docstring);
+        None: this process only."""
+        self.folder = None if folder is None else Path(folder)
+
+    def _file(self, key) -> Path | None:
+        """The file of ``key`` in the shared folder, None when not shared (no folder, or a key that does not
+        read back equal)."""
+        if self.folder is None:
+            return None
+        blob = pickle.dumps(key, protocol=pickle.HIGHEST_PROTOCOL)
+        if pickle.loads(blob) != key:
+            return None
+        return self.folder / f"{hashlib.sha256(blob).hexdigest()}.pkl"
 
     def __call__(self, *args):
         try:
@@ -92,8 +119,17 @@ class Memo:
             self._store.move_to_end(key)
             self.hits += 1
             return self._store[key]
-        self.misses += 1
-        result = self.compute(*args)
+        path = self._file(key)
+        if path is not None and path.is_file():
+            self.hits += 1
+            result = pickle.loads(path.read_bytes())
+        else:
+            self.misses += 1
+            result = self.compute(*args)
+            if path is not None:
+                tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+                tmp.write_bytes(pickle.dumps(result, protocol=pickle.HIGHEST_PROTOCOL))
+                os.replace(tmp, path)
         freeze_arrays(result)
         self._store[key] = result
         while len(self._store) > self.size:

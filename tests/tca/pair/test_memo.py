@@ -59,3 +59,42 @@ def test_memo_keeps_the_last_results_and_computes_unkeyable_inputs():
     assert len(calls) == 4
     m(object()), m(object())  # no fingerprint: computed every time
     assert len(calls) == 6 and (m.hits, m.misses) == (1, 6)
+
+
+def test_a_shared_folder_joins_processes(tmp_path):
+    """Two memos sharing a folder stand for two processes (the suite's workers): the second reads the first's
+    result from its file; a key with a nan is not shared; no temporary file is left."""
+    calls = []
+
+    def compute(v):
+        calls.append(v)
+        return np.array([v, 2.0 * v])
+
+    first, second = Memo(compute), Memo(compute)
+    first.share(tmp_path)
+    second.share(tmp_path)
+    a = first(1.5)
+    b = second(1.5)
+    assert calls == [1.5] and np.array_equal(a, b) and b is not a and not b.flags.writeable
+    assert (second.hits, second.misses) == (1, 0)
+    assert second(1.5) is b  # then from its own store
+    assert len(list(tmp_path.iterdir())) == 1 and not list(tmp_path.glob(".*"))
+    first(float("nan")), second(float("nan"))  # nan never matches: computed by each, not written
+    assert len(calls) == 3 and len(list(tmp_path.iterdir())) == 1
+    alone = Memo(compute)  # not shared: computes
+    alone(1.5)
+    assert len(calls) == 4
+
+
+def test_a_pair_tca_read_from_the_shared_folder_equals_the_computed_one(tmp_path):
+    """A pair's TCA written by one memo and read back by another: equal pair and options, equal arrays."""
+    first, second = Memo(run_pair_tca), Memo(run_pair_tca)
+    first.share(tmp_path)
+    second.share(tmp_path)
+    r = first(spur(), OPTS)
+    s = second(spur(), OPTS)
+    assert (second.hits, second.misses) == (1, 0) and s is not r
+    assert s.pair == r.pair and s.options == r.options
+    for f in ("phi1", "phi2", "te", "transitions"):
+        assert np.array_equal(getattr(s, f), getattr(r, f)), f
+        assert not getattr(s, f).flags.writeable, f
