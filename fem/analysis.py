@@ -21,11 +21,11 @@ Steps (timings reported in ``FEResult.info.timings``):
 6. stresses by Gauss-point extrapolation and nodal averaging (``fem.recovery``); reactions.
 
 Order of the work (with PARDISO and more than one kernel thread allowed; otherwise steps 1-4 in turn). The
-pattern of A's upper triangle follows from the connectivity, the supports and the contact set alone (every entry of K, T and G taken as 1, so that no product cancels). It is built first while
-the element matrices are computed on a background thread; PARDISO's symbolic analysis of the pattern (ordering,
-one core) then runs on a thread while K, K_r and A's values are assembled, and the numeric factorization
-takes those values on the analysed pattern (an entry the values' products dropped as an exact zero is kept as
-a stored zero). Timings: ``contact_setup_s`` the patterns and contact set, ``assembly_s`` the rest of the
+pattern of A's upper triangle follows from the connectivity, the supports and the contact set alone (every
+entry of K, T and G taken as 1, so that no product cancels). It is built first while the element matrices are
+computed on a background thread; PARDISO's symbolic analysis of the pattern (ordering, one core) then runs on a
+thread while K, K_r and A's values are assembled, and the numeric factorization takes those values on the
+analysed pattern (an entry the values' products dropped as an exact zero is kept as a stored zero). Timings: ``contact_setup_s`` the patterns and contact set, ``assembly_s`` the rest of the
 element matrices and K, ``reduction_s`` K_r and A's values, ``analysis_s`` the symbolic analysis (overlapped
 with the two before), ``factor_s`` the wait for it and the numeric factorization.
 """
@@ -47,9 +47,9 @@ from fem.assembly import block_assembly, surface_load
 from fem.constraints import known_names, reduction
 from fem.contact.active_set import ReducedContact, penalty_active_set
 from fem.contact.patch import contact_patch
-from fem.contact.search import contact_set
-from fem.elements.hex8 import hex8_matrices, kernel_threads
-from fem.la.linsolve import choose_solver, schur_analysis, schur_system
+from fem.contact.search import ContactSet, contact_set
+from fem.elements.hex8 import ElementMatrices, hex8_matrices, kernel_threads
+from fem.la.linsolve import SchurSystem, choose_solver, schur_analysis, schur_system
 from fem.la.pardiso import bordered_upper, on_pattern
 from fem.model import FEModel
 from fem.result import FEResult, PairResult, SolveInfo
@@ -116,17 +116,18 @@ def _pattern(ba, red, GrT: sp.csr_matrix | None) -> sp.csr_matrix:
 
 @dataclass(frozen=True, eq=False)
 class _Factored:
-    """Steps 1-4 up to the factorization."""
+    """Steps 1-4 up to the factorization: element matrices, K, the reduced system, the contact set and its candidates,
+    the Schur rows C and the factored bordered matrix."""
 
-    em: object  # fem.elements.hex8.ElementMatrices
+    em: ElementMatrices
     K: sp.csr_matrix
     f: np.ndarray
     Kr: sp.csr_matrix
     fr: np.ndarray
-    cs: object  # fem.contact.search.ContactSet or None
+    cs: ContactSet | None
     cand: np.ndarray
     C: np.ndarray
-    sysm: object  # fem.la.linsolve.SchurSystem
+    sysm: SchurSystem
 
 
 def _factored(mesh: HexMesh, model: FEModel, red, materials, t: dict) -> _Factored:
