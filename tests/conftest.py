@@ -45,29 +45,29 @@ def pytest_unconfigure(config):
 
 # `make test` runs two workers, one test file each (-n 2 --dist loadfile --no-loadscope-reorder), in the order
 # collected: the heaviest files go first so that the run does not end with one worker alone on a long file.
-# Seconds per file from `pytest --durations=0` (quiet 2-core machine, 2026-11-26 at c8574e9); a file not listed
+# Seconds per file from `pytest --durations=0` (quiet 2-core machine, 2026-11-26 at e8c962f); a file not listed
 # keeps its place after these.
 HEAVY_FILES = {
-    "tests/pipelines/models/stress/test_stress.py": 79,
-    "tests/pipelines/report/test_compare.py": 69,
-    "tests/pipelines/models/ltca/test_ltca.py": 32,
-    "tests/tca/planetary/test_regulation.py": 27,
-    "tests/pipelines/report/test_report_layout.py": 26,
-    "tests/pipelines/report/test_run.py": 21,
-    "tests/pipelines/cli/test_cli_contract.py": 21,
-    "tests/pipelines/cli/test_sweep.py": 18,
-    "tests/pipelines/calculix/test_calculix_stress.py": 16,
-    "tests/pipelines/sweep/test_sweep_stress.py": 16,
-    "tests/mesher/test_volume.py": 16,
-    "tests/pipelines/models/stress/test_stress_neighbours.py": 15,
-    "tests/pipelines/analyses/test_tca_face.py": 15,
+    "tests/pipelines/report/test_compare.py": 50,
+    "tests/pipelines/models/stress/test_stress.py": 43,
+    "tests/pipelines/models/ltca/test_ltca.py": 26,
+    "tests/tca/planetary/test_regulation.py": 23,
+    "tests/pipelines/report/test_report_layout.py": 22,
+    "tests/pipelines/report/test_run.py": 22,
+    "tests/pipelines/cli/test_cli_contract.py": 20,
+    "tests/mesher/test_volume.py": 17,
+    "tests/pipelines/cli/test_sweep.py": 17,
+    "tests/tca/face/test_train.py": 14,
     "tests/pipelines/cli/test_tca.py": 14,
-    "tests/pipelines/analyses/test_tca_isostatic.py": 12,
-    "tests/pipelines/analyses/test_tca_planetary.py": 12,
-    "tests/test_examples.py": 12,
-    "tests/pipelines/models/stress/test_headline.py": 12,
-    "tests/tca/face/test_train.py": 10,
-    "tests/tca/isostatic/test_analysis.py": 10,
+    "tests/pipelines/analyses/test_tca_face.py": 13,
+    "tests/pipelines/models/stress/test_headline.py": 13,
+    "tests/pipelines/analyses/test_tca_planetary.py": 13,
+    "tests/pipelines/models/stress/test_stress_neighbours.py": 13,
+    "tests/tca/geometry/test_end_relief.py": 12,
+    "tests/pipelines/sweep/test_sweep_stress.py": 12,
+    "tests/tca/isostatic/test_analysis.py": 12,
+    "tests/test_examples.py": 11,
+    "tests/pipelines/analyses/test_tca_isostatic.py": 10,
 }
 
 
