@@ -38,7 +38,6 @@ from tca.errors import InputError
 from pipelines.cases.stress import torque_record
 from pipelines.cli.run import add_overrides, progress, read_with_overrides, write_summary
 from pipelines.cli.outdir import staged_output
-from pipelines.render.plots import side_by_side
 from pipelines.report.figures import picture_range
 from pipelines.report.compare import shared_comparison
 from pipelines.report.designs import DesignSteps, run_designs
@@ -208,6 +207,8 @@ def handle(args) -> int:
                 pimgs.append(tmp / label / f"{zone_name(itf, mem)}_pressure.png")
                 sh = summaries[label]["load_share"][itf]["members"][mem]
                 titles.append(f"({'a' if label == LABELS[0] else 'b'}) {label}: {itf}, member {mem}, share {sh:.2f}")
+        from pipelines.render.plots import side_by_side  # matplotlib only when there is something to draw (1.5 s at import)
+
         cols = min(len(zones), 2)  # at most two panels a row: colour-bar ticks legible at page scale
         side_by_side(imgs, titles, tmp / "compare_zones.png", "von Mises stress [MPa] on the loaded flanks", ncols=cols)
         side_by_side(pimgs, titles, tmp / "compare_pressure.png", "contact pressure [MPa]", ncols=cols)
