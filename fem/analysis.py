@@ -25,9 +25,10 @@ pattern of A's upper triangle follows from the connectivity, the supports and th
 entry of K, T and G taken as 1, so that no product cancels). It is built first while the element matrices are
 computed on a background thread; PARDISO's symbolic analysis of the pattern (ordering, one core) then runs on a
 thread while K, K_r and A's values are assembled, and the numeric factorization takes those values on the
-analysed pattern (an entry the values' products dropped as an exact zero is kept as a stored zero). Timings: ``contact_setup_s`` the patterns and contact set, ``assembly_s`` the rest of the
-element matrices and K, ``reduction_s`` K_r and A's values, ``analysis_s`` the symbolic analysis (overlapped
-with the two before), ``factor_s`` the wait for it and the numeric factorization.
+analysed pattern (an entry the values' products dropped as an exact zero is kept as a stored zero).
+Timings: ``contact_setup_s`` the patterns and contact set, ``assembly_s`` the rest of the element matrices
+and K, ``reduction_s`` K_r and A's values, ``analysis_s`` the symbolic analysis (overlapped with the two
+before), ``factor_s`` the wait for it and the numeric factorization.
 """
 
 from __future__ import annotations
@@ -92,25 +93,25 @@ def _ones(M: sp.csr_matrix) -> sp.csr_matrix:
     return sp.csr_matrix((np.ones(len(M.data)), M.indices, M.indptr), shape=M.shape)
 
 
-def _structure(mesh: HexMesh, model: FEModel, red, E_c: np.ndarray):
+def _structure(mesh: HexMesh, model: FEModel, red, Tt: sp.csr_matrix, E_c: np.ndarray):
     """What follows from the mesh and supports alone: the assembly's scatter, the contact set and its candidates,
-    the Schur rows C (free rigid DOFs, then the gap rows) and G_r^T (steps 1, 3 and 4 without values)."""
+    the Schur rows C (free rigid DOFs, then the gap rows) and G_r^T (steps 1, 3 and 4 without values);
+    Tt = T^T as CSR."""
     ba = block_assembly(mesh.cells, mesh.n_points)
     cs = contact_set(mesh, model.contacts, E_c, model.contact.penalty_factor, model.contact.quadrature,
                      model.contact.points) if model.contacts else None
     cand = np.flatnonzero(cs.candidate) if cs is not None else np.zeros(0, np.int64)
     GrT = None
     if len(cand):
-        GrT = (red.T.T.tocsr() @ cs.G[cand].T).tocsr()
+        GrT = (Tt @ cs.G[cand].T).tocsr()
         GrT.sort_indices()
     C = np.concatenate([red.free_rigid, red.n + np.arange(len(cand))])
     return ba, cs, cand, C, GrT
 
 
-def _pattern(ba, red, GrT: sp.csr_matrix | None) -> sp.csr_matrix:
+def _pattern(ba, red, Tt: sp.csr_matrix, GrT: sp.csr_matrix | None) -> sp.csr_matrix:
     """The pattern of the bordered matrix's upper triangle, every entry of K, T and G taken as 1."""
-    T = _ones(red.T)
-    Kr = (_ones(red.T.T.tocsr()) @ (ba.pattern() @ T)).tocsr()
+    Kr = (_ones(Tt) @ (ba.pattern() @ _ones(red.T))).tocsr()
     return bordered_upper(Kr, _ones(GrT) if GrT is not None else None)
 
 
@@ -138,13 +139,15 @@ def _factored(mesh: HexMesh, model: FEModel, red, materials, t: dict) -> _Factor
     method = choose_solver(model.solver.solver)
     overlap = method == "pardiso" and kernel_threads() > 1
     args = (mesh.points, mesh.cells, lam_c, mu_c, model.solver.element == "hex8i")
+    T = red.T
+    Tt = T.T.tocsr()  # T^T as CSR: (T.T @ K) would convert the whole K to CSC first
     with ThreadPoolExecutor(max_workers=1) as background:
         em_job = background.submit(hex8_matrices, *args) if overlap else None
         pending = None
         try:
-            ba, cs, cand, C, GrT = _structure(mesh, model, red, E_c)
+            ba, cs, cand, C, GrT = _structure(mesh, model, red, Tt, E_c)
             if overlap:  # the symbolic analysis of A's pattern (one core) runs while the values are assembled
-                pending = schur_analysis(_pattern(ba, red, GrT), C, method, definite=True)
+                pending = schur_analysis(_pattern(ba, red, Tt, GrT), C, method, definite=True)
             t["contact_setup_s"] = time.perf_counter() - t0
 
             t1 = time.perf_counter()
@@ -155,8 +158,6 @@ def _factored(mesh: HexMesh, model: FEModel, red, materials, t: dict) -> _Factor
             t["assembly_s"] = time.perf_counter() - t1
 
             t1 = time.perf_counter()
-            T = red.T
-            Tt = T.T.tocsr()  # T^T as CSR: (T.T @ K) would convert the whole K to CSC first
             Kr = (Tt @ (K @ T)).tocsr()
             fr = Tt @ (f - K @ red.u_prescribed) + red.f_ref
             A = bordered_upper(Kr, GrT)

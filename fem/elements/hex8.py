@@ -120,7 +120,8 @@ def _geometry(X: np.ndarray, incompatible: bool):
     dN = _ref_grads(_XQ)  # (q, 8, 3)
     m = len(X)
     # J[m, q, i, k] = sum_a X[m, a, i] dN[q, a, k]: one matrix product (3m, 8) (8, 3q)
-    J = (X.transpose(0, 2, 1).reshape(-1, 8) @ dN.transpose(1, 0, 2).reshape(8, -1)).reshape(m, 3, -1, 3).transpose(0, 2, 1, 3)
+    J = (X.transpose(0, 2, 1).reshape(-1, 8) @ dN.transpose(1, 0, 2).reshape(8, -1))
+    J = J.reshape(m, 3, -1, 3).transpose(0, 2, 1, 3)
     inv, det = _inv3(J)  # inv[k, i] = dxi_k/dx_i
     q = det.shape[1]
     nf = 11 if incompatible else 8
@@ -136,6 +137,12 @@ def _geometry(X: np.ndarray, incompatible: bool):
     return g, det
 
 
+def _first_inverted(det: np.ndarray) -> int | None:
+    """Index of the first cell with det J <= 0 at a Gauss point (det (m, q)), None when there is none."""
+    bad = np.flatnonzero((det <= 0.0).any(axis=1))
+    return int(bad[0]) if len(bad) else None
+
+
 def _inverted(cell: int) -> FEInputError:
     return FEInputError("mesh.cells", cell, "the index of a hexahedron with det J > 0 at all Gauss points (VTK node order)",
                         "this cell is inverted or degenerate")
@@ -144,8 +151,9 @@ def _inverted(cell: int) -> FEInputError:
 def hex_geometry(points: np.ndarray, cells: np.ndarray, incompatible: bool) -> HexGeometry:
     """Gauss-point gradients (2x2x2) of VTK-ordered hexahedra, with the Taylor-corrected modes (module docstring)."""
     g, det = _geometry(points[cells], incompatible)
-    if np.any(det <= 0.0):
-        raise _inverted(int(np.flatnonzero((det <= 0.0).any(axis=1))[0]))
+    bad = _first_inverted(det)
+    if bad is not None:
+        raise _inverted(bad)
     return HexGeometry(grads=g, dx=np.abs(det) * _WQ[None, :], xq=_XQ)
 
 
@@ -230,8 +238,9 @@ def hex8_matrices(points, cells, lam, mu, incompatible: bool = True, chunk: int 
     def run(s: int) -> None:
         sl = slice(s, min(s + chunk, m))
         g, det = _geometry(points[cells[sl]], incompatible)
-        if np.any(det <= 0.0):
-            bad.append(s + int(np.flatnonzero((det <= 0.0).any(axis=1))[0]))
+        first = _first_inverted(det)
+        if first is not None:
+            bad.append(s + first)
             return
         grads[sl], dx[sl] = g, det * _WQ[None, :]
         K = isotropic_stiffness(g, dx[sl], lam[sl], mu[sl])
