@@ -23,9 +23,10 @@ Steps (timings reported in ``FEResult.info.timings``):
 Order of the work (with PARDISO and more than one kernel thread allowed; otherwise steps 1-4 in turn). The
 pattern of A's upper triangle follows from the connectivity, the supports and the contact set alone
 (``fem.bordered``: K_r's free block is a selection of K, its rigid columns and G_r^T are small). It is built first
-while the element matrices are computed on a background thread (one kernel thread); PARDISO's symbolic analysis of
-the pattern (ordering, one core) then runs on a thread while the assembly's scatter, K and A's values (gathered
-from K) are made, and the numeric factorization takes those values on the analysed pattern.
+while the element matrices are computed on a background thread (``fem.elements.hex8.Hex8Job``); PARDISO's
+symbolic analysis of the pattern (ordering, one core) then runs on a thread while the assembly's scatter is built,
+this thread joins the element matrices' chunks, and K and A's values (gathered from K) are made; the numeric
+factorization takes those values on the analysed pattern.
 Timings: ``contact_setup_s`` the patterns and contact set, ``assembly_s`` the scatter, the wait for the element
 matrices and K, ``reduction_s`` A's values, ``analysis_s`` the symbolic analysis (overlapped with the two before),
 ``factor_s`` the wait for it and the numeric factorization.
@@ -34,7 +35,6 @@ matrices and K, ``reduction_s`` A's values, ``analysis_s`` the symbolic analysis
 from __future__ import annotations
 
 import time
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -50,7 +50,7 @@ from fem.constraints import known_names, reduction
 from fem.contact.active_set import ReducedContact, penalty_active_set
 from fem.contact.patch import contact_patch
 from fem.contact.search import ContactSet, contact_set
-from fem.elements.hex8 import ElementMatrices, hex8_matrices, kernel_threads
+from fem.elements.hex8 import ElementMatrices, Hex8Job, hex8_matrices, kernel_threads
 from fem.la.linsolve import SchurSystem, choose_solver, schur_analysis, schur_system
 from fem.model import FEModel
 from fem.result import FEResult, PairResult, SolveInfo
@@ -127,44 +127,43 @@ def _factored(mesh: HexMesh, model: FEModel, red, materials, t: dict) -> _Factor
     overlap = method == "pardiso" and kernel_threads() > 1
     args = (mesh.points, mesh.cells, lam_c, mu_c, model.solver.element == "hex8i")
     Tt = red.T.T.tocsr()  # T^T as CSR: (T.T @ K) would convert the whole K to CSC first
-    with ThreadPoolExecutor(max_workers=1) as background:
-        em_job = background.submit(hex8_matrices, *args, threads=1) if overlap else None
-        pending = None
-        try:
-            bp = block_pattern(mesh.cells, mesh.n_points)
-            cs, cand, C, GrT = _contact(mesh, model, red, Tt, E_c)
-            layout = bordered_layout(bp, red, GrT)
-            if overlap:  # the symbolic analysis of A's pattern (one core) runs while the values are assembled
-                pending = schur_analysis(layout.pattern, C, method, definite=True)
-            t["contact_setup_s"] = time.perf_counter() - t0
+    em_job = Hex8Job(*args) if overlap else None
+    pending = None
+    try:
+        bp = block_pattern(mesh.cells, mesh.n_points)
+        cs, cand, C, GrT = _contact(mesh, model, red, Tt, E_c)
+        layout = bordered_layout(bp, red, GrT)
+        if overlap:  # the symbolic analysis of A's pattern (one core) runs while the values are assembled
+            pending = schur_analysis(layout.pattern, C, method, definite=True)
+        t["contact_setup_s"] = time.perf_counter() - t0
 
-            t1 = time.perf_counter()
-            ba = block_assembly(mesh.cells, mesh.n_points, bp)
-            em = em_job.result() if overlap else hex8_matrices(*args)
-            K = ba.assemble(em.stiffness)
-            del ba
-            f = _external_load(mesh, model)
-            t["assembly_s"] = time.perf_counter() - t1
+        t1 = time.perf_counter()
+        ba = block_assembly(mesh.cells, mesh.n_points, bp)
+        em = em_job.result() if overlap else hex8_matrices(*args)
+        K = ba.assemble(em.stiffness)
+        del ba
+        f = _external_load(mesh, model)
+        t["assembly_s"] = time.perf_counter() - t1
 
-            t1 = time.perf_counter()
-            fr = Tt @ (f - K @ red.u_prescribed) + red.f_ref
-            A = layout.values(K)
-            del layout
-            t["reduction_s"] = time.perf_counter() - t1
+        t1 = time.perf_counter()
+        fr = Tt @ (f - K @ red.u_prescribed) + red.f_ref
+        A = layout.values(K)
+        del layout
+        t["reduction_s"] = time.perf_counter() - t1
 
-            t1 = time.perf_counter()
-            # only A_RR = K_r without the free rigid DOFs is factored: SPD (every body held), so Cholesky applies;
-            # the gap rows' zero diagonal lies in the Schur block C (mtype 2 instead of -2: 2-11 % less factor CPU
-            # time on the twin)
-            sysm = pending.factor(A) if overlap else schur_system(A, C, method, definite=True, upper=True)
-            t["factor_s"] = time.perf_counter() - t1
-            if overlap:
-                t["analysis_s"] = pending.analysis_s
-        finally:
-            if em_job is not None:
-                em_job.cancel()
-            if pending is not None:
-                pending.close()
+        t1 = time.perf_counter()
+        # only A_RR = K_r without the free rigid DOFs is factored: SPD (every body held), so Cholesky applies;
+        # the gap rows' zero diagonal lies in the Schur block C (mtype 2 instead of -2: 2-11 % less factor CPU
+        # time on the twin)
+        sysm = pending.factor(A) if overlap else schur_system(A, C, method, definite=True, upper=True)
+        t["factor_s"] = time.perf_counter() - t1
+        if overlap:
+            t["analysis_s"] = pending.analysis_s
+    finally:
+        if em_job is not None:
+            em_job.cancel()
+        if pending is not None:
+            pending.close()
     return _Factored(em, K, f, A.data[A.indptr[red.free_rigid]], fr, cs, cand, C, sysm)
 
 

@@ -21,7 +21,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["BlockPattern", "block_pattern", "BlockAssembly", "block_assembly", "assemble_blocks", "surface_load", "face_node_areas"]
+__all__ = ["BlockPattern", "block_pattern", "BlockAssembly", "block_assembly", "assemble_blocks", "surface_load",
+           "face_node_areas"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -58,7 +59,8 @@ class BlockAssembly:
 
     def assemble(self, Ke: np.ndarray) -> sp.csr_matrix:
         """Sum element matrices (m, 3k, 3k) into the (3n, 3n) CSR matrix (sorted indices)."""
-        return self.pattern.csr(np.asarray(self.scatter @ np.asarray(Ke, float).reshape(self.scatter.shape[1], 3)).ravel())
+        summed = self.scatter @ np.asarray(Ke, float).reshape(self.scatter.shape[1], 3)
+        return self.pattern.csr(np.asarray(summed).ravel())
 
 
 def _index_type(*sizes: int):

@@ -89,8 +89,8 @@ class BorderedLayout:
         data[self.dst] = K.data[self.src]
         if self.x_pattern.nnz:
             pos = _row_entries(K.indptr, self.tied)
-            Kt = sp.csr_matrix((K.data[pos], K.indices[pos], np.concatenate([[0], np.cumsum(np.diff(K.indptr)[self.tied])])),
-                               shape=(len(self.tied), K.shape[1]))
+            indptr = np.concatenate([[0], np.cumsum(np.diff(K.indptr)[self.tied])])
+            Kt = sp.csr_matrix((K.data[pos], K.indices[pos], indptr), shape=(len(self.tied), K.shape[1]))
             data[self.x_dst] = on_pattern(_upper_x(self.Rt @ Kt @ self.T, self.n_free), self.x_pattern).data
         data[self.g_dst] = self.g_data
         A = sp.csr_matrix((data, self.pattern.indices, self.pattern.indptr), shape=self.pattern.shape)
