@@ -281,7 +281,7 @@ def _loaded_parts(pair: GearPair, c: MeshContact, rules: SizeRules, load: MeshLo
         sizes = (unloaded_sizes(rules, g1), unloaded_sizes(rules, g2))
         return sizes, [Focus(pair.side1, u1, v1), Focus(pair.side2, u2, v2)], [(), ()], ()
     top = max(zones, key=lambda z: z.share)
-    shape = ((top.b, top.a, top.s),)  # the most loaded pair's sizes; the other zones are meshed alike over their extents
+    shape = ((top.b, top.a, top.s, top.uniform),)  # the most loaded pair's sizes; the other zones are meshed alike
     main = next((z for z in zones if z.teeth == main_teeth), None)
     sizes, foci, others = [], [], []
     for i, (g, side, (u, v)) in enumerate(((g1, pair.side1, (u1, v1)), (g2, pair.side2, (u2, v2)))):
