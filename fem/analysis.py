@@ -126,7 +126,7 @@ def _factored(mesh: HexMesh, model: FEModel, red, materials, t: dict) -> _Factor
     method = choose_solver(model.solver.solver)
     overlap = method == "pardiso" and kernel_threads() > 1
     args = (mesh.points, mesh.cells, lam_c, mu_c, model.solver.element == "hex8i")
-    Tt = red.T.T.tocsr()  # T^T as CSR: (T.T @ K) would convert the whole K to CSC first
+    Tt = red.T.T.tocsr()  # T^T as CSR, for G_r^T and f_r
     em_job = Hex8Job(*args) if overlap else None
     pending = None
     try:
