@@ -15,6 +15,10 @@ Rows, each solved in its own process (its peak resident memory is the row's memo
 ``--fourth`` runs the fourth round's study of the fillet target instead (:data:`FOURTH`, docs/benchmarks.md "Fourth
 round: the fillet target"): the crowned pair at refine 1, one region varied at a time from the third round's default.
 
+``--line`` runs the fifth round's study of the axial size of a line contact instead (:data:`LINE`, (G7) of
+:mod:`pipelines.models.stress.sizing`): the FZG pair aligned and misaligned by 2', the shipped spur and internal pairs,
+their axial sizes a/12 (reference), a/6, a/4 and a/3. About 2 min on a quiet 2-core machine.
+
 ``--grading`` runs the grading study of issue 26, item 2 instead (:data:`GRADING`, docs/benchmarks.md "Third round:
 grading away from the zones"): the crowned pair at refine 1 with the fillet arc size, the axial spacing outside the
 zones, the growth across the tooth and the coarse size varied one at a time, and two reference sequences (the fillet
@@ -48,7 +52,8 @@ from pipelines.cases.schema import Table
 from pipelines.models.stress.model import check_resources, estimate_resources, mesh_scene
 from pipelines.models.stress.run import build_scene, run_stress
 
-__all__ = ["main", "ROWS", "FZG", "GRADING", "FOURTH", "run_row", "estimate_sweep", "grading_study"]
+__all__ = ["main", "ROWS", "FZG", "GRADING", "FOURTH", "LINE", "run_row", "estimate_sweep", "grading_study",
+           "line_study"]
 
 FZG = {"gears.pinion.teeth": 16, "gears.pinion.profile_shift": 0.18, "gears.wheel.profile_shift": 0.17,
        "center_distance_mm": 91.5}
@@ -105,6 +110,23 @@ FOURTH = [
     ("fillet 0.09 mm, fillet layers 1.35, depth 1.5, axial growth 1.5", {**_THIRD[0], "mesh.fillet_size_mm": 0.09},
      {"section_growth": 1.35, "depth_growth": 1.5, "axial_growth": 1.5}),
     ("new default: fillet 0.09 mm (G1), growth 1.5 (G4), fillet layers 1.3 (G3), depth 1.5 (G5)", {}, {}),
+]
+# the fifth round (docs/benchmarks.md "Fifth round: the axial size of a uniform line contact", (G7)): spur line
+# contacts with the axial size at fractions of the loaded line's half-length a = 7 mm (half the face), against a/12
+_A = 7.0
+_MIS = {**FZG, "misalignment.d_gamma_arcmin": 2.0}
+LINE = [
+    ("FZG pair, a/12", "stress_spur_pair", FZG, {"axial": _A / 12}),
+    ("FZG pair, a/6 (before)", "stress_spur_pair", FZG, {"axial": _A / 6}),
+    ("FZG pair, default (a/4: uniform line load)", "stress_spur_pair", FZG, {}),
+    ("FZG pair, a/3", "stress_spur_pair", FZG, {"axial": _A / 3}),
+    ("FZG pair misaligned 2', a/12", "stress_spur_pair", _MIS, {"axial": _A / 12}),
+    ("FZG pair misaligned 2', default (a/6: w_min/w_max 0.34)", "stress_spur_pair", _MIS, {}),
+    ("FZG pair misaligned 2', a/4", "stress_spur_pair", _MIS, {"axial": _A / 4}),
+    ("shipped spur pair, a/12", "stress_spur_pair", {}, {"axial": _A / 12}),
+    ("shipped spur pair, default (a/4)", "stress_spur_pair", {}, {}),
+    ("internal pair, a/12", "stress_internal_pair", {}, {"axial": _A / 12}),
+    ("internal pair, default (a/4)", "stress_internal_pair", {}, {}),
 ]
 HELICAL = {"aligned": {}, "misaligned": {"misalignment": {"d_gamma_arcmin": 3.0}}}
 
@@ -193,6 +215,20 @@ def fourth_study(out: Path) -> dict:
     return rows
 
 
+def line_study(out: Path) -> dict:
+    """The rows of :data:`LINE` (each in its own process), written to ``out/line.md``."""
+    rows = {label: _child(label, "--line-row") for label, _, _, _ in LINE}
+    L = ["# Fifth round: the axial size of a uniform line contact (G7)", "",
+         "| variant | DOF | end to end [s] | peak pressure [MPa] | Hertz p0 [MPa] | fillet [MPa] | max von Mises [MPa] |",
+         "|---|---|---|---|---|---|---|"]
+    L += [f"| {k} | {r['dofs']} | {r['total_s']:.1f} | {r['p']:.1f} | {r['hertz_p0']:.1f} | {r['fillet']:.2f} | "
+          f"{r['von_mises']:.1f} |" for k, r in rows.items()]
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "line.md").write_text("\n".join(L) + "\n")
+    (out / "line.json").write_text(json.dumps(rows, indent=1, default=str))
+    return rows
+
+
 def grading_study(out: Path) -> dict:
     """The rows of :data:`GRADING` (each in its own process), written to ``out/grading.md`` with the Richardson values
     of the two reference sequences (fillet size 0.2/0.1/0.05 mm at refine 1; refine 0.71/1/1.41)."""
@@ -261,6 +297,8 @@ def main(argv=None) -> int:
     ap.add_argument("--grading-row", help=argparse.SUPPRESS)
     ap.add_argument("--fourth", action="store_true", help="the fourth round's study (the fillet target) alone")
     ap.add_argument("--fourth-row", help=argparse.SUPPRESS)
+    ap.add_argument("--line", action="store_true", help="the fifth round's study (axial size of line contacts) alone")
+    ap.add_argument("--line-row", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.row is not None:
         _, name, ov = next(r for r in ROWS if r[0] == args.row)
@@ -274,7 +312,15 @@ def main(argv=None) -> int:
         _, ov, rules = next(r for r in FOURTH if r[0] == args.fourth_row)
         print(json.dumps(run_row("stress_pair_small", {"mesh.refine": 1.0, **ov}, rules)))
         return 0
+    if args.line_row is not None:
+        _, name, ov, rules = next(r for r in LINE if r[0] == args.line_row)
+        print(json.dumps(run_row(name, ov, rules or None)))
+        return 0
     out = Path(args.out)
+    if args.line:
+        line_study(out)
+        print(f"wrote {out / 'line.md'}")
+        return 0
     if args.fourth:
         fourth_study(out)
         print(f"wrote {out / 'fourth.md'}")

@@ -21,20 +21,20 @@ Steps (timings reported in ``FEResult.info.timings``):
 6. stresses by Gauss-point extrapolation and nodal averaging (``fem.recovery``); reactions.
 
 Order of the work (with PARDISO and more than one kernel thread allowed; otherwise steps 1-4 in turn). The
-pattern of A's upper triangle follows from the connectivity, the supports and the contact set alone (every
-entry of K, T and G taken as 1, so that no product cancels). It is built first while the element matrices are
-computed on a background thread; PARDISO's symbolic analysis of the pattern (ordering, one core) then runs on a
-thread while K, K_r and A's values are assembled, and the numeric factorization takes those values on the
-analysed pattern (an entry the values' products dropped as an exact zero is kept as a stored zero).
-Timings: ``contact_setup_s`` the patterns and contact set, ``assembly_s`` the rest of the element matrices
-and K, ``reduction_s`` K_r and A's values, ``analysis_s`` the symbolic analysis (overlapped with the two
-before), ``factor_s`` the wait for it and the numeric factorization.
+pattern of A's upper triangle follows from the connectivity, the supports and the contact set alone
+(``fem.bordered``: K_r's free block is a selection of K, its rigid columns and G_r^T are small). It is built first
+while the element matrices are computed on a background thread (``fem.elements.hex8.Hex8Job``); PARDISO's
+symbolic analysis of the pattern (ordering, one core) then runs on a thread while the assembly's scatter is built,
+this thread joins the element matrices' chunks, and K and A's values (gathered from K) are made; the numeric
+factorization takes those values on the analysed pattern.
+Timings: ``contact_setup_s`` the patterns and contact set, ``assembly_s`` the scatter, the wait for the element
+matrices and K, ``reduction_s`` A's values, ``analysis_s`` the symbolic analysis (overlapped with the two before),
+``factor_s`` the wait for it and the numeric factorization.
 """
 
 from __future__ import annotations
 
 import time
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -44,14 +44,14 @@ from fem.mesh.hexmesh import HexMesh
 from fem.errors import FEConvergenceError, FEInputError
 
 from fem import recovery as st
-from fem.assembly import block_assembly, surface_load
+from fem.assembly import block_assembly, block_pattern, surface_load
+from fem.bordered import bordered_layout
 from fem.constraints import known_names, reduction
 from fem.contact.active_set import ReducedContact, penalty_active_set
 from fem.contact.patch import contact_patch
 from fem.contact.search import ContactSet, contact_set
-from fem.elements.hex8 import ElementMatrices, hex8_matrices, kernel_threads
+from fem.elements.hex8 import ElementMatrices, Hex8Job, hex8_matrices, kernel_threads
 from fem.la.linsolve import SchurSystem, choose_solver, schur_analysis, schur_system
-from fem.la.pardiso import bordered_upper, on_pattern
 from fem.model import FEModel
 from fem.result import FEResult, PairResult, SolveInfo
 
@@ -88,16 +88,9 @@ def _closed_area(cs, sel, gap, sol) -> float:
     return float(cs.area[sel][gap[sel] <= tol].sum())
 
 
-def _ones(M: sp.csr_matrix) -> sp.csr_matrix:
-    """M's pattern with every stored entry 1 (a product of such patterns cancels nowhere)."""
-    return sp.csr_matrix((np.ones(len(M.data)), M.indices, M.indptr), shape=M.shape)
-
-
-def _structure(mesh: HexMesh, model: FEModel, red, Tt: sp.csr_matrix, E_c: np.ndarray):
-    """What follows from the mesh and supports alone: the assembly's scatter, the contact set and its candidates,
-    the Schur rows C (free rigid DOFs, then the gap rows) and G_r^T (steps 1, 3 and 4 without values);
-    Tt = T^T as CSR."""
-    ba = block_assembly(mesh.cells, mesh.n_points)
+def _contact(mesh: HexMesh, model: FEModel, red, Tt: sp.csr_matrix, E_c: np.ndarray):
+    """What follows from the mesh and supports alone for the contact (steps 3 and 4 without values): the contact
+    set and its candidates, the Schur rows C (free rigid DOFs, then the gap rows) and G_r^T; Tt = T^T as CSR."""
     cs = contact_set(mesh, model.contacts, E_c, model.contact.penalty_factor, model.contact.quadrature,
                      model.contact.points) if model.contacts else None
     cand = np.flatnonzero(cs.candidate) if cs is not None else np.zeros(0, np.int64)
@@ -106,13 +99,7 @@ def _structure(mesh: HexMesh, model: FEModel, red, Tt: sp.csr_matrix, E_c: np.nd
         GrT = (Tt @ cs.G[cand].T).tocsr()
         GrT.sort_indices()
     C = np.concatenate([red.free_rigid, red.n + np.arange(len(cand))])
-    return ba, cs, cand, C, GrT
-
-
-def _pattern(ba, red, Tt: sp.csr_matrix, GrT: sp.csr_matrix | None) -> sp.csr_matrix:
-    """The pattern of the bordered matrix's upper triangle, every entry of K, T and G taken as 1."""
-    Kr = (_ones(Tt) @ (ba.pattern() @ _ones(red.T))).tocsr()
-    return bordered_upper(Kr, _ones(GrT) if GrT is not None else None)
+    return cs, cand, C, GrT
 
 
 @dataclass(frozen=True, eq=False)
@@ -123,7 +110,7 @@ class _Factored:
     em: ElementMatrices
     K: sp.csr_matrix
     f: np.ndarray
-    Kr: sp.csr_matrix
+    kdiag: np.ndarray  # K_r's diagonal at the free rigid DOFs
     fr: np.ndarray
     cs: ContactSet | None
     cand: np.ndarray
@@ -139,46 +126,45 @@ def _factored(mesh: HexMesh, model: FEModel, red, materials, t: dict) -> _Factor
     method = choose_solver(model.solver.solver)
     overlap = method == "pardiso" and kernel_threads() > 1
     args = (mesh.points, mesh.cells, lam_c, mu_c, model.solver.element == "hex8i")
-    T = red.T
-    Tt = T.T.tocsr()  # T^T as CSR: (T.T @ K) would convert the whole K to CSC first
-    with ThreadPoolExecutor(max_workers=1) as background:
-        em_job = background.submit(hex8_matrices, *args) if overlap else None
-        pending = None
-        try:
-            ba, cs, cand, C, GrT = _structure(mesh, model, red, Tt, E_c)
-            if overlap:  # the symbolic analysis of A's pattern (one core) runs while the values are assembled
-                pending = schur_analysis(_pattern(ba, red, Tt, GrT), C, method, definite=True)
-            t["contact_setup_s"] = time.perf_counter() - t0
+    Tt = red.T.T.tocsr()  # T^T as CSR, for G_r^T and f_r
+    em_job = Hex8Job(*args) if overlap else None
+    pending = None
+    try:
+        bp = block_pattern(mesh.cells, mesh.n_points)
+        cs, cand, C, GrT = _contact(mesh, model, red, Tt, E_c)
+        layout = bordered_layout(bp, red, GrT)
+        if overlap:  # the symbolic analysis of A's pattern (one core) runs while the values are assembled
+            pending = schur_analysis(layout.pattern, C, method, definite=True)
+        t["contact_setup_s"] = time.perf_counter() - t0
 
-            t1 = time.perf_counter()
-            em = em_job.result() if overlap else hex8_matrices(*args)
-            K = ba.assemble(em.stiffness)
-            del ba
-            f = _external_load(mesh, model)
-            t["assembly_s"] = time.perf_counter() - t1
+        t1 = time.perf_counter()
+        ba = block_assembly(mesh.cells, mesh.n_points, bp)
+        em = em_job.result() if overlap else hex8_matrices(*args)
+        K = ba.assemble(em.stiffness)
+        del ba
+        f = _external_load(mesh, model)
+        t["assembly_s"] = time.perf_counter() - t1
 
-            t1 = time.perf_counter()
-            Kr = (Tt @ (K @ T)).tocsr()
-            fr = Tt @ (f - K @ red.u_prescribed) + red.f_ref
-            A = bordered_upper(Kr, GrT)
-            if overlap:
-                A = on_pattern(A, pending.pattern)
-            t["reduction_s"] = time.perf_counter() - t1
+        t1 = time.perf_counter()
+        fr = Tt @ (f - K @ red.u_prescribed) + red.f_ref
+        A = layout.values(K)
+        del layout
+        t["reduction_s"] = time.perf_counter() - t1
 
-            t1 = time.perf_counter()
-            # only A_RR = K_r without the free rigid DOFs is factored: SPD (every body held), so Cholesky applies;
-            # the gap rows' zero diagonal lies in the Schur block C (mtype 2 instead of -2: 2-11 % less factor CPU
-            # time on the twin)
-            sysm = pending.factor(A) if overlap else schur_system(A, C, method, definite=True, upper=True)
-            t["factor_s"] = time.perf_counter() - t1
-            if overlap:
-                t["analysis_s"] = pending.analysis_s
-        finally:
-            if em_job is not None:
-                em_job.cancel()
-            if pending is not None:
-                pending.close()
-    return _Factored(em, K, f, Kr, fr, cs, cand, C, sysm)
+        t1 = time.perf_counter()
+        # only A_RR = K_r without the free rigid DOFs is factored: SPD (every body held), so Cholesky applies;
+        # the gap rows' zero diagonal lies in the Schur block C (mtype 2 instead of -2: 2-11 % less factor CPU
+        # time on the twin)
+        sysm = pending.factor(A) if overlap else schur_system(A, C, method, definite=True, upper=True)
+        t["factor_s"] = time.perf_counter() - t1
+        if overlap:
+            t["analysis_s"] = pending.analysis_s
+    finally:
+        if em_job is not None:
+            em_job.cancel()
+        if pending is not None:
+            pending.close()
+    return _Factored(em, K, f, A.data[A.indptr[red.free_rigid]], fr, cs, cand, C, sysm)
 
 
 def solve(mesh: HexMesh, model: FEModel) -> FEResult:
@@ -188,7 +174,7 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
     lam_c, mu_c, E_c = _cell_materials(mesh, model)
     red = reduction(mesh, model)
     fa = _factored(mesh, model, red, (lam_c, mu_c, E_c), t)
-    em, K, f, Kr, fr, cs, cand, C, sysm = fa.em, fa.K, fa.f, fa.Kr, fa.fr, fa.cs, fa.cand, fa.C, fa.sysm
+    em, K, f, kdiag, fr, cs, cand, C, sysm = fa.em, fa.K, fa.f, fa.kdiag, fa.fr, fa.cs, fa.cand, fa.C, fa.sysm
     del fa
     k = len(cand)
     n_r = red.n
@@ -206,7 +192,6 @@ def solve(mesh: HexMesh, model: FEModel) -> FEResult:
         g_p = cs.gap0[cand] + cs.G[cand] @ red.u_prescribed if k else np.zeros(0)
         ghat = g_p - yC[ig]
         fhat = yC[iF]
-        kdiag = Kr.diagonal()[F]
         seed = cs.seed[cand] if k else np.zeros(0, bool)
         stiff = cs.stiffness[cand] if k else np.zeros(0)
         area = cs.area[cand] if k else np.zeros(0)

@@ -21,38 +21,54 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["BlockAssembly", "block_assembly", "assemble_blocks", "surface_load", "face_node_areas"]
+__all__ = ["BlockPattern", "block_pattern", "BlockAssembly", "block_assembly", "assemble_blocks", "surface_load",
+           "face_node_areas"]
 
 
 @dataclass(frozen=True, eq=False)
-class BlockAssembly:
-    """Where the entries of the element matrices of a connectivity go in the CSR arrays of the global matrix.
+class BlockPattern:
+    """The CSR pattern (3n, 3n) of a global matrix with 3x3 node blocks, sorted: ``nodes`` the node-block pattern
+    N^T N of step (1) (n, n), ``indptr`` and ``indices`` its scalar rows (step 3). Known from the connectivity alone
+    (:func:`block_pattern`), cheaply: the scatter of step (2)-(3) is the expensive part of an assembly."""
 
-    ``scatter`` (nnz / 3, m k 3 k) is the 0/1 matrix of step (3); ``indptr`` and ``indices`` the CSR pattern
-    (3n, 3n), sorted. Known from the connectivity alone, before any element matrix (:func:`block_assembly`)."""
-
-    scatter: sp.csc_matrix
+    nodes: sp.csr_matrix
     indptr: np.ndarray
     indices: np.ndarray
-    n_nodes: int
 
-    def pattern(self) -> sp.csr_matrix:
-        """The global matrix's pattern with every stored entry 1."""
-        return self._csr(np.ones(len(self.indices)))
+    @property
+    def n_nodes(self) -> int:
+        return self.nodes.shape[0]
 
-    def assemble(self, Ke: np.ndarray) -> sp.csr_matrix:
-        """Sum element matrices (m, 3k, 3k) into the (3n, 3n) CSR matrix (sorted indices)."""
-        return self._csr(np.asarray(self.scatter @ np.asarray(Ke, float).reshape(self.scatter.shape[1], 3)).ravel())
-
-    def _csr(self, data: np.ndarray) -> sp.csr_matrix:
+    def csr(self, data: np.ndarray) -> sp.csr_matrix:
+        """The (3n, 3n) matrix with these values (one per stored entry) on the pattern."""
         n = 3 * self.n_nodes
         K = sp.csr_matrix((data, self.indices, self.indptr), shape=(n, n))
         K.has_sorted_indices = True
         return K
 
 
-def block_assembly(conn: np.ndarray, n_nodes: int) -> BlockAssembly:
-    """Steps (1)-(3) of the module docstring for connectivity (m, k)."""
+@dataclass(frozen=True, eq=False)
+class BlockAssembly:
+    """Where the entries of the element matrices of a connectivity go in the CSR arrays of the global matrix.
+
+    ``scatter`` (nnz / 3, m k 3 k) is the 0/1 matrix of step (3); ``pattern`` the CSR pattern (3n, 3n). Known from
+    the connectivity alone, before any element matrix (:func:`block_assembly`)."""
+
+    scatter: sp.csc_matrix
+    pattern: BlockPattern
+
+    def assemble(self, Ke: np.ndarray) -> sp.csr_matrix:
+        """Sum element matrices (m, 3k, 3k) into the (3n, 3n) CSR matrix (sorted indices)."""
+        summed = self.scatter @ np.asarray(Ke, float).reshape(self.scatter.shape[1], 3)
+        return self.pattern.csr(np.asarray(summed).ravel())
+
+
+def _index_type(*sizes: int):
+    return np.int32 if max(sizes) < np.iinfo(np.int32).max else np.int64
+
+
+def block_pattern(conn: np.ndarray, n_nodes: int) -> BlockPattern:
+    """Steps (1) and (3) of the module docstring without the scatter: the pattern of connectivity (m, k)."""
     m, k = conn.shape
     c = np.asarray(conn, np.int64)
     N = sp.csr_matrix((np.ones(m * k), c.ravel(), np.arange(0, m * k + 1, k)), shape=(m, n_nodes))
@@ -61,22 +77,36 @@ def block_assembly(conn: np.ndarray, n_nodes: int) -> BlockAssembly:
     nb = np.diff(P.indptr).astype(np.int64)
     bp = P.indptr[:-1].astype(np.int64)
     nnz = 9 * P.nnz
-    M = m * k * 3 * k
-    idt = np.int32 if max(nnz, 3 * n_nodes, M) < np.iinfo(np.int32).max else np.int64
-    # (2) block index p of each element block (e, a, b): the pattern sampled with values 0, 1, ... (exact in float64)
-    Q = sp.csr_matrix((np.arange(P.nnz, dtype=float), P.indices, P.indptr), shape=P.shape)
-    r = np.broadcast_to(c[:, :, None], (m, k, k)).ravel()
-    p = np.asarray(Q[r, np.broadcast_to(c[:, None, :], (m, k, k)).ravel()]).reshape(m, k, 1, k).astype(np.int64)
-    # (3) row (e, a, i, b) of Ke.reshape(-1, 3) goes to row 2 bp_r + i nb_r + p of the CSR data viewed as (nnz / 3, 3)
-    rho = p + (2 * bp[c])[:, :, None, None] + np.arange(3)[None, None, :, None] * nb[c][:, :, None, None]
-    S = sp.csc_matrix((np.ones(M), rho.ravel().astype(idt), np.arange(M + 1, dtype=idt)), shape=(nnz // 3, M))
+    idt = _index_type(nnz, 3 * n_nodes, m * k * 3 * k)
     lengths = np.repeat(3 * nb, 3)  # entries of scalar row 3 r + i
     indptr = np.zeros(3 * n_nodes + 1, idt)
     np.cumsum(lengths, out=indptr[1:])
     cols3 = (3 * P.indices.astype(idt)[:, None] + np.arange(3, dtype=idt)).ravel()  # block row r's columns, in order
     shift = (6 * bp[:, None] + 3 * np.arange(3)[None, :] * nb[:, None]).ravel().astype(idt)
     indices = cols3[np.arange(nnz, dtype=idt) - np.repeat(shift, lengths)]  # the same columns for i = 0, 1, 2
-    return BlockAssembly(S, indptr, indices, n_nodes)
+    return BlockPattern(P, indptr, indices)
+
+
+def block_assembly(conn: np.ndarray, n_nodes: int, pattern: BlockPattern | None = None) -> BlockAssembly:
+    """Steps (1)-(3) of the module docstring for connectivity (m, k); ``pattern``: its :func:`block_pattern` if
+    already known."""
+    m, k = conn.shape
+    c = np.asarray(conn, np.int64)
+    if pattern is None:
+        pattern = block_pattern(conn, n_nodes)
+    P = pattern.nodes
+    nb = np.diff(P.indptr).astype(np.int64)
+    bp = P.indptr[:-1].astype(np.int64)
+    M = m * k * 3 * k
+    idt = _index_type(9 * P.nnz, 3 * n_nodes, M)
+    # (2) block index p of each element block (e, a, b): the pattern sampled with values 0, 1, ... (exact in float64)
+    Q = sp.csr_matrix((np.arange(P.nnz, dtype=float), P.indices, P.indptr), shape=P.shape)
+    r = np.broadcast_to(c[:, :, None], (m, k, k)).ravel()
+    p = np.asarray(Q[r, np.broadcast_to(c[:, None, :], (m, k, k)).ravel()]).reshape(m, k, 1, k).astype(np.int64)
+    # (3) row (e, a, i, b) of Ke.reshape(-1, 3) goes to row 2 bp_r + i nb_r + p of the CSR data viewed as (nnz / 3, 3)
+    rho = p + (2 * bp[c])[:, :, None, None] + np.arange(3)[None, None, :, None] * nb[c][:, :, None, None]
+    S = sp.csc_matrix((np.ones(M), rho.ravel().astype(idt), np.arange(M + 1, dtype=idt)), shape=(3 * P.nnz, M))
+    return BlockAssembly(S, pattern)
 
 
 def assemble_blocks(Ke: np.ndarray, conn: np.ndarray, n_nodes: int) -> sp.csr_matrix:

@@ -4,8 +4,8 @@ The nodal DOF vector u (3 per node, interleaved) is written as
 
     u = T q + u_p,
 
-q the reduced unknowns: the DOFs of nodes that are neither fixed nor tied, then the free DOFs of
-the reference nodes. A node i tied to reference point p (frame R = [e1 e2 e3], e3 the axis)
+q the reduced unknowns: the DOFs of nodes that are neither fixed nor tied (in their order), then the
+free DOFs of the reference nodes. A node i tied to reference point p (frame R = [e1 e2 e3], e3 the axis)
 moves rigidly with it (small rotations):
 
     u_i = R a + (R theta) x (x_i - p) = [R | -[x_i - p]_x R] (a, theta),
@@ -85,6 +85,7 @@ class Reduction:
     f_ref: np.ndarray
     free_rigid: np.ndarray
     fixed: np.ndarray  # (3n,) bool
+    free_dof: np.ndarray  # (3n,) bool: neither fixed nor tied; reduced DOF i is the i-th of them (i < n - len(free_rigid))
     support_nodes: dict  # body -> nodes held by a Fixed set or tied to a reference
     rigid: tuple[RigidRef, ...]
 
@@ -189,4 +190,4 @@ def reduction(mesh: HexMesh, model: FEModel) -> Reduction:
     for columns, gen in f_ref_parts:
         f_ref[columns[columns >= 0]] += gen[columns >= 0]
     free_rigid = np.arange(n_free, next_col)
-    return Reduction(T, u_p, f_ref, free_rigid, fixed, support_nodes, tuple(refs))
+    return Reduction(T, u_p, f_ref, free_rigid, fixed, free_dof, support_nodes, tuple(refs))

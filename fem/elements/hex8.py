@@ -45,6 +45,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import threading
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
@@ -59,6 +60,7 @@ __all__ = [
     "isotropic_stiffness",
     "ElementMatrices",
     "hex8_matrices",
+    "Hex8Job",
     "kernel_threads",
     "run_chunks",
 ]
@@ -220,6 +222,46 @@ def run_chunks(run, m: int, chunk: int, threads: int | None = None) -> None:
                 run(s)
 
 
+class _Hex8Chunks:
+    """The outputs of :func:`hex8_matrices` and the work of one chunk of cells (``run``, which writes only its own
+    rows); ``result`` checks for inverted cells once every chunk has run."""
+
+    def __init__(self, points, cells, lam, mu, incompatible: bool, chunk: int):
+        self.points, self.cells, self.lam, self.mu = points, cells, lam, mu
+        self.incompatible, self.chunk = incompatible, chunk
+        self.m = m = len(cells)
+        nf = 11 if incompatible else 8
+        self.grads = np.empty((m, len(_WQ), nf, 3))
+        self.dx = np.empty((m, len(_WQ)))
+        self.Ke = np.empty((m, 24, 24))
+        self.X = np.empty((m, 9, 24)) if incompatible else None
+        self.bad: list[int] = []
+
+    def run(self, s: int) -> None:
+        sl = slice(s, min(s + self.chunk, self.m))
+        g, det = _geometry(self.points[self.cells[sl]], self.incompatible)
+        first = _first_inverted(det)
+        if first is not None:
+            self.bad.append(s + first)
+            return
+        self.grads[sl], self.dx[sl] = g, det * _WQ[None, :]
+        K = isotropic_stiffness(g, self.dx[sl], self.lam[sl], self.mu[sl])
+        if self.incompatible:
+            Kaa, Kau = K[:, 24:, 24:], K[:, 24:, :24]
+            Xs = np.linalg.solve(Kaa, Kau)
+            Kc = K[:, :24, :24] - np.matmul(K[:, :24, 24:], Xs)
+            self.Ke[sl] = 0.5 * (Kc + Kc.transpose(0, 2, 1))  # symmetric to round-off; exactly, per chunk in cache
+            self.X[sl] = Xs
+        else:
+            self.Ke[sl] = K  # R^T R: exactly symmetric
+
+    def result(self) -> ElementMatrices:
+        if self.bad:
+            raise _inverted(min(self.bad))
+        geo = HexGeometry(grads=self.grads, dx=self.dx, xq=_XQ)
+        return ElementMatrices(stiffness=self.Ke, condensation=self.X, geometry=geo)
+
+
 def hex8_matrices(points, cells, lam, mu, incompatible: bool = True, chunk: int = 1000,
                   threads: int | None = None) -> ElementMatrices:
     """Stiffness of all cells (C3D8 or C3D8I-like with condensed modes), chunked to bound memory.
@@ -227,34 +269,58 @@ def hex8_matrices(points, cells, lam, mu, incompatible: bool = True, chunk: int 
     The chunks are independent (each computes its cells' geometry and writes its own rows of the outputs) and
     numpy releases the GIL in their batched products and solves, so they run on ``threads`` threads (default
     ``kernel_threads()``); the result does not depend on the number of threads (same chunks, same operations)."""
-    m = len(cells)
-    nf = 11 if incompatible else 8
-    grads = np.empty((m, len(_WQ), nf, 3))
-    dx = np.empty((m, len(_WQ)))
-    Ke = np.empty((m, 24, 24))
-    X = np.empty((m, 9, 24)) if incompatible else None
-    bad = []
+    work = _Hex8Chunks(points, cells, lam, mu, incompatible, chunk)
+    run_chunks(work.run, work.m, chunk, threads)
+    return work.result()
 
-    def run(s: int) -> None:
-        sl = slice(s, min(s + chunk, m))
-        g, det = _geometry(points[cells[sl]], incompatible)
-        first = _first_inverted(det)
-        if first is not None:
-            bad.append(s + first)
-            return
-        grads[sl], dx[sl] = g, det * _WQ[None, :]
-        K = isotropic_stiffness(g, dx[sl], lam[sl], mu[sl])
-        if incompatible:
-            Kaa, Kau = K[:, 24:, 24:], K[:, 24:, :24]
-            Xs = np.linalg.solve(Kaa, Kau)
-            Kc = K[:, :24, :24] - np.matmul(K[:, :24, 24:], Xs)
-            Ke[sl] = 0.5 * (Kc + Kc.transpose(0, 2, 1))  # symmetric to round-off; exactly, per chunk in cache
-            X[sl] = Xs
-        else:
-            Ke[sl] = K  # R^T R: exactly symmetric
 
-    run_chunks(run, m, chunk, threads)
-    if bad:
-        raise _inverted(min(bad))
-    geo = HexGeometry(grads=grads, dx=dx, xq=_XQ)
-    return ElementMatrices(stiffness=Ke, condensation=X, geometry=geo)
+class Hex8Job:
+    """:func:`hex8_matrices` started on one background thread; :meth:`result` joins in from the calling thread (both
+    then take the remaining chunks, one at a time) and returns the same matrices (same chunks, same operations).
+
+    For a caller with other work first: the element matrices use the core it leaves free, then both. BLAS is held
+    to one thread from the start to :meth:`result` or :meth:`cancel` (one process-wide limit, entered and left on
+    the calling thread); call one of them in a ``finally``."""
+
+    def __init__(self, points, cells, lam, mu, incompatible: bool = True, chunk: int = 1000):
+        self._work = _Hex8Chunks(points, cells, lam, mu, incompatible, chunk)
+        self._next = iter(range(0, self._work.m, chunk))
+        self._lock = threading.Lock()
+        self._error: BaseException | None = None
+        self._limit = _one_blas_thread()
+        self._limit.__enter__()
+        self._thread = threading.Thread(target=self._take, name="hex8", daemon=True)
+        self._thread.start()
+
+    def _take(self) -> None:
+        try:
+            while True:
+                with self._lock:
+                    s = next(self._next, None)
+                if s is None or self._error is not None:
+                    return
+                self._work.run(s)
+        except BaseException as exc:  # re-raised by result()
+            self._error = exc
+
+    def _finish(self) -> None:
+        if self._thread is not None:
+            self._thread.join()
+            self._thread = None
+            self._limit.__exit__(None, None, None)
+
+    def result(self) -> ElementMatrices:
+        """Take chunks on this thread too until none is left, wait for the background thread; the matrices."""
+        self._take()
+        self._finish()
+        if self._error is not None:
+            raise self._error
+        return self._work.result()
+
+    def cancel(self) -> None:
+        """Hand out no more chunks; wait for the one running."""
+        with self._lock:
+            self._next = iter(())
+        self._finish()
+
+

@@ -25,7 +25,7 @@ import scipy.sparse as sp
 
 from fem.errors import FEError
 
-__all__ = ["available", "upper_csr", "bordered_upper", "on_pattern", "Pardiso"]
+__all__ = ["available", "upper_csr", "on_pattern", "Pardiso"]
 
 _P = ctypes.POINTER
 _I32 = ctypes.c_int32
@@ -87,20 +87,6 @@ def upper_csr(K: sp.spmatrix) -> sp.csr_matrix:
     U.sum_duplicates()
     U.sort_indices()
     return U
-
-
-def bordered_upper(Kr: sp.csr_matrix, GrT: sp.csr_matrix | None) -> sp.csr_matrix:
-    """The upper triangle of [[K_r, G_r^T], [G_r, 0]] as PARDISO takes it (CSR, rows sorted, each starting at its
-    diagonal entry): upper(K_r) with the columns G_r^T on its right, then the gap rows' zero diagonal (CSR
-    stacking, no copy of the whole bordered matrix)."""
-    A = upper_csr(Kr)
-    if GrT is None:
-        return A
-    n, k = GrT.shape
-    zero = sp.csr_matrix((np.zeros(k), n + np.arange(k), np.arange(k + 1)), shape=(k, n + k))
-    A = sp.vstack([sp.hstack([A, GrT], format="csr"), zero], format="csr")
-    A.has_sorted_indices = True
-    return A
 
 
 def on_pattern(A: sp.csr_matrix, P: sp.csr_matrix) -> sp.csr_matrix:

@@ -61,8 +61,9 @@ zone per pair of teeth that carries at least ``ZONE_SHARE`` (0.1) of its force
 (:func:`pipelines.models.stress.zones.pair_zone`: extents covering the pair's loaded slices, each slice's Hertz
 half-width :math:`b_i = p_i/\kappa_i` across the line); the part's profile and axial sizes are those of the most
 loaded pair, :math:`b/3` (:math:`b/4` for a line contact) and :math:`\min(a/6,\ b/(3|\sin\theta|))` with
-:math:`b` its half-width at its largest pressure and :math:`a` its loaded line's half-length
-(:func:`pipelines.models.stress.sizing.zone_sizes`). A pair below the share, or a mesh the estimate leaves
+:math:`b` its half-width at its largest pressure and :math:`a` its loaded line's half-length, :math:`a/4` instead
+of :math:`a/6` along a line contact whose line load is uniform (:func:`pipelines.models.stress.sizing.zone_sizes`,
+(G7)). A pair below the share, or a mesh the estimate leaves
 unloaded (a twin member with backlash), gets the neighbour mesh; where no pair but the zoned ones is within the
 estimate's reach (``EstimateGrid.reach``, 50 µm of separation), by the estimate and by the unloaded TCA, the other
 teeth's flanks are left coarse; the run flags a pair without a zone that the FE
@@ -281,7 +282,7 @@ def _loaded_parts(pair: GearPair, c: MeshContact, rules: SizeRules, load: MeshLo
         sizes = (unloaded_sizes(rules, g1), unloaded_sizes(rules, g2))
         return sizes, [Focus(pair.side1, u1, v1), Focus(pair.side2, u2, v2)], [(), ()], ()
     top = max(zones, key=lambda z: z.share)
-    shape = ((top.b, top.a, top.s),)  # the most loaded pair's sizes; the other zones are meshed alike over their extents
+    shape = ((top.b, top.a, top.s, top.uniform),)  # the most loaded pair's sizes; the other zones are meshed alike
     main = next((z for z in zones if z.teeth == main_teeth), None)
     sizes, foci, others = [], [], []
     for i, (g, side, (u, v)) in enumerate(((g1, pair.side1, (u1, v1)), (g2, pair.side2, (u2, v2)))):

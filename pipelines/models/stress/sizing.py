@@ -27,6 +27,14 @@ growth ratios refined like the sizes, the slope q - 1 of the size field divided 
 refine); (G6) the layer size at depth d under the loaded flank and fillet, the finer of the Hertz field (contact
 size h_c) and the fillet field (:mod:`mesher.body`, ``plan_tooth``). The layers under the fillet are graded like those
 under the flank (:mod:`mesher.tooth`, Step 3).
+
+Axial size of a line contact (G7). A contact's axial size resolves its pressure along the loaded line: a/6 of the
+line's half-length a (an ellipse's pressure falls to zero over a). Along a line contact whose line load is uniform
+(the smallest slice line load of the loaded estimate at least 0.9 of the largest: an aligned spur pair, a profile
+modification) it is a/4: on the aligned FZG-type pair and a 22/37 pair the peak pressure and the fillet stress at a/4
+are within 0.2 % of those at a/12, at 0.36-0.40 times the DOF (docs/benchmarks.md, "Fifth round: the axial size of
+a uniform line contact"); a line load that varies along the face (misalignment: 1.2 % lower peak at a/4 with 2'
+of misalignment, 0.3 % at a/6; end relief) keeps a/6.
 """
 
 from __future__ import annotations
@@ -45,7 +53,7 @@ from tca.pair.analysis import ContactKind
 
 __all__ = ["HertzContact", "hertz_contact", "SizeRules", "ContactSizes", "contact_sizes", "zone_sizes", "unloaded_sizes",
            "NEIGHBOUR", "FILLET", "AXIAL_COARSE", "AXIAL_COARSE_MAX", "SECTION_GROWTH", "DEPTH_GROWTH", "GROWTH",
-           "SIZING"]
+           "AXIAL_LINE", "UNIFORM_LINE", "SIZING"]
 
 # ---------------------------------------------------------------------------------------------- Hertz and sizes
 @dataclass(frozen=True)
@@ -119,6 +127,8 @@ AXIAL_COARSE_MAX = 1.5  # ... and never beyond this [module] unless the coarse s
 SECTION_GROWTH = 1.3  # growth of the layers under the loaded fillet and along its root at refine 1 (G3)
 DEPTH_GROWTH = 1.5  # growth of the layers under the contact and under the other flank at refine 1 (G5)
 GROWTH = 1.5  # default mesh.growth: the flank profile and the axial levels away from the zones (G4)
+AXIAL_LINE = 4.0  # axial size of a line contact with a uniform line load [half-lengths of the loaded line] (G7)
+UNIFORM_LINE = 0.9  # ... uniform: the smallest slice line load at least this fraction of the largest (G7)
 
 
 C_PRIME = 14.0  # [N/(mm um)] single stiffness of a solid spur pair, ISO 6336-1 (order of magnitude of c')
@@ -292,15 +302,23 @@ def _refined(q: float, r: float) -> float:
 def zone_sizes(rules: SizeRules, gear: Gear, line: bool, zones: tuple, ext_u: float, ext_z: float) -> ContactSizes:
     """Sizes of a part whose zones come from the loaded estimate (:mod:`pipelines.models.stress.loaded`).
 
-    ``zones``: (b, a, s) of every loaded pair of teeth: the Hertz half-width b [mm] of its loaded contact, the
-    half-length a [mm] of its loaded line and the sine s of the line's angle from the axis. The part's profile size
-    is the smallest b/3 (b/4 for a line contact), its axial size the smallest min(a/6, b/(3 s)) (one size per part:
-    the mesher grades every zone of it alike); ``ext_u``, ``ext_z`` [mm]: the main zone's half-lengths (over its
-    loaded slices, times ``rules.zone``: :mod:`pipelines.models.stress.zones`)."""
+    ``zones``: (b, a, s, u) of every loaded pair of teeth: the Hertz half-width b [mm] of its loaded contact, the
+    half-length a [mm] of its loaded line, the sine s of the line's angle from the axis and the uniformity u of its
+    line load (w_min / w_max over the loaded slices; 1 if not known). The part's profile size is the smallest b/3
+    (b/4 for a line contact), its axial size the smallest min(a/6, b/(3 s)), a/4 instead of a/6 on a line contact
+    whose u >= 0.9 (G7) (one size per part: the mesher grades every zone of it alike); ``ext_u``, ``ext_z`` [mm]:
+    the main zone's half-lengths (over its loaded slices, times ``rules.zone``:
+    :mod:`pipelines.models.stress.zones`)."""
     b = min(z[0] for z in zones)
     contact = rules.contact if rules.contact is not None else b / (4.0 if line else 3.0)
-    axial = rules.axial if rules.axial is not None else min(
-        min(a / 6.0, bb / (3.0 * s) if s > 1e-12 else math.inf) for bb, a, s in zones)
+
+    def along(z) -> float:  # the axial size a zone needs
+        bb, a, s = z[:3]
+        uniform = z[3] if len(z) > 3 else 1.0
+        k = AXIAL_LINE if line and uniform >= UNIFORM_LINE else 6.0
+        return min(a / k, bb / (3.0 * s) if s > 1e-12 else math.inf)
+
+    axial = rules.axial if rules.axial is not None else min(along(z) for z in zones)
     return _sizes(rules, gear.module, contact, axial, ext_u, ext_z)
 
 

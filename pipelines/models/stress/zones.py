@@ -14,7 +14,9 @@ line and the slice length ℓ (half a slice along it),
 
 f = ``[mesh] zone`` (1.2): the zone's half-lengths along the profile and the axis (:class:`mesher.Focus`).
 The line's half-length a (half the span of the points along it, plus ℓ/2) and s give the axial size
-min(a/6, b/(3 s)) (:func:`pipelines.models.stress.sizing.zone_sizes`).
+min(a/6, b/(3 s)), a/4 instead of a/6 on a line contact whose line load is uniform: the smallest over the largest
+slice line load :math:`w_{min}/w_{max} = (b_{min}/b_{max})^2` (w ∝ b² at one curvature) at least 0.9
+(:func:`pipelines.models.stress.sizing.zone_sizes`, (G7)).
 """
 
 from __future__ import annotations
@@ -38,7 +40,8 @@ ZONE_SHARE = 0.1  # a loaded pair carrying less of its mesh's force gets the nei
 class Zone:
     """A loaded pair's refined zone on both gears: centres (u1, z1, u2, z2) [mm], half-lengths per gear
     ((e_u1, e_z1), (e_u2, e_z2)) [mm], Hertz half-width b, line half-length a [mm], sine s of the line from
-    the axis, and the pair's teeth and share of its mesh's force."""
+    the axis, the pair's teeth and share of its mesh's force, and the uniformity of its line load w_min/w_max over
+    the loaded slices (module docstring)."""
 
     teeth: tuple
     centre: tuple
@@ -47,6 +50,7 @@ class Zone:
     a: float
     s: float
     share: float
+    uniform: float = 1.0
 
 
 def _flank_offsets(f: PlacedFlank, uv: tuple, phi: float, x: np.ndarray) -> np.ndarray | None:
@@ -84,4 +88,5 @@ def pair_zone(pair: GearPair, load: PairLoad, centre: tuple, zone: float, angle:
     w = load.widths if len(load.widths) else np.array([load.b])
     ext = tuple((zone * float(np.max(np.abs(d[:, 0]) + w * co + half_len * s)),
                  zone * float(np.max(np.abs(d[:, 1]) + w * s + half_len * co))) for d in offsets)
-    return Zone(load.teeth, tuple(float(x) for x in centre), ext, load.b, a, s, load.share)
+    uniform = float((np.min(w) / np.max(w)) ** 2) if np.max(w) > 0 else 1.0
+    return Zone(load.teeth, tuple(float(x) for x in centre), ext, load.b, a, s, load.share, uniform)

@@ -89,3 +89,37 @@ def test_cantilever_plain_hex8_fails_the_same_tolerance():
     """Plain 8-node hexahedra on the same mesh are too stiff in bending (measured 0.937)."""
     s, d = _beam("hex8", 4)
     assert not (DEFLECTION_BAND[0] < d < DEFLECTION_BAND[1])
+
+
+def test_hex8_job_equals_hex8_matrices_and_reports_an_inverted_cell():
+    """Hex8Job (a background thread joined by the caller, chunks taken one at a time): the matrices of
+    hex8_matrices exactly; an inverted cell raises from result() as from hex8_matrices; cancel() stops it."""
+    import pytest
+    from fem.elements.hex8 import Hex8Job
+    from fem.errors import FEInputError
+
+    from threadpoolctl import threadpool_info
+
+    def blas():
+        return [i["num_threads"] for i in threadpool_info() if i.get("user_api") == "blas"]
+
+    before = blas()
+    m, pts = _distorted_box()
+    lam, mu = _lame(m)
+    ref = hex8_matrices(pts, m.cells, lam, mu, chunk=2)
+    job = Hex8Job(pts, m.cells, lam, mu, chunk=2)
+    em = job.result()
+    np.testing.assert_array_equal(em.stiffness, ref.stiffness)
+    np.testing.assert_array_equal(em.condensation, ref.condensation)
+    np.testing.assert_array_equal(em.geometry.dx, ref.geometry.dx)
+    bad = m.cells.copy()
+    bad[5] = bad[5][[4, 5, 6, 7, 0, 1, 2, 3]]  # top and bottom faces swapped: inside out
+    with pytest.raises(FEInputError) as e_ref:
+        hex8_matrices(pts, bad, lam, mu, chunk=2)
+    with pytest.raises(FEInputError) as e_job:
+        Hex8Job(pts, bad, lam, mu, chunk=2).result()
+    assert str(e_job.value) == str(e_ref.value)
+    job = Hex8Job(pts, m.cells, lam, mu, chunk=1)
+    job.cancel()
+    job.cancel()
+    assert blas() == before  # the BLAS limit held meanwhile is lifted again

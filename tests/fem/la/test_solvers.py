@@ -78,24 +78,6 @@ def test_pardiso_refuses_a_matrix_given_as_upper_that_is_not():
         pardiso.Pardiso(K, None, upper=True)  # the whole symmetric matrix: rows do not start at the diagonal
 
 
-@pytest.mark.parametrize("gaps", [20, 0])
-@pytest.mark.parametrize("diagonal", ["stored", "missing"])
-def test_bordered_upper_equals_upper_of_the_bordered_matrix(gaps, diagonal):
-    """bordered_upper(K, G^T): upper([[K, G^T], [G, 0]]) with every diagonal entry stored, built in one pass."""
-    K, _ = _spd(200, seed=5)
-    if diagonal == "missing":
-        K = K.tolil()
-        K[3, 3] = 0.0
-        K = K.tocsr()
-        K.eliminate_zeros()
-    G = sp.random(gaps, K.shape[0], density=0.05, random_state=6, format="csr") if gaps else None
-    full = sp.bmat([[K, G.T], [G, sp.csr_matrix((gaps, gaps))]], format="csr") if gaps else K
-    U = pardiso.bordered_upper(K, G.T.tocsr() if gaps else None)
-    ref = pardiso.upper_csr(full)
-    assert np.array_equal(U.indptr, ref.indptr) and np.array_equal(U.indices, ref.indices)
-    np.testing.assert_array_equal(U.data, ref.data)
-
-
 def test_on_pattern_puts_values_on_a_larger_pattern():
     """on_pattern: the values of a matrix whose product dropped exact zeros, on the pattern analysed before."""
     K, _ = _spd(120, seed=7)
@@ -118,7 +100,7 @@ def test_pending_analysis_then_values_equals_one_factorization(method):
 
     K, rng = _spd()
     G = sp.random(20, K.shape[0], density=0.05, random_state=4, format="csr")
-    U = pardiso.bordered_upper(K, G.T.tocsr())
+    U = pardiso.upper_csr(sp.bmat([[K, G.T], [G, sp.csr_matrix((20, 20))]], format="csr"))
     C = K.shape[0] + np.arange(20)
     pattern = sp.csr_matrix((np.ones(U.nnz), U.indices, U.indptr), shape=U.shape)
     pending = schur_analysis(pattern, C, method)

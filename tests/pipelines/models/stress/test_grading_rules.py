@@ -62,3 +62,17 @@ def test_grading_overrides(sun):
 def test_bad_grading_rules_name_their_key(kw, key):
     with pytest.raises(InputError, match=key.replace(".", r"\.")):
         SizeRules(**kw)
+
+
+def test_axial_size_of_a_uniform_line_contact(sun):
+    """(G7): a line contact whose line load is uniform (w_min / w_max >= 0.9) gets a/4 along the line, one whose load
+    varies (misalignment, end relief) and an ellipse a/6; an inclined line keeps b / (3 s) when finer."""
+    a = 4.0  # [mm]: a/4 and a/6 below the coarse size 0.75 m of the sun (m = 2 mm)
+    spur = ((0.13, a, 0.0, 0.95),)
+    assert zone_sizes(SizeRules(), sun, True, spur, 0.2, 8.0).axial == pytest.approx(a / 4)
+    assert zone_sizes(SizeRules(), sun, True, ((0.13, a, 0.0, 0.78),), 0.2, 8.0).axial == pytest.approx(a / 6)
+    assert zone_sizes(SizeRules(), sun, False, spur, 0.2, 8.0).axial == pytest.approx(a / 6)  # an ellipse
+    assert zone_sizes(SizeRules(), sun, True, ((0.13, a, 0.0),), 0.2, 8.0).axial == pytest.approx(a / 4)  # u unknown
+    helical = zone_sizes(SizeRules(), sun, True, ((0.13, a, 0.3, 1.0),), 0.2, 8.0)
+    assert helical.axial == pytest.approx(max(0.13 / 0.9, helical.contact))
+    assert zone_sizes(SizeRules(refine=2.0), sun, True, spur, 0.2, 8.0).axial == pytest.approx(a / 8)
