@@ -33,8 +33,8 @@ line's half-length a (an ellipse's pressure falls to zero over a). Along a line 
 (the smallest slice line load of the loaded estimate at least 0.9 of the largest: an aligned spur pair, a profile
 modification) it is a/4: on the aligned FZG-type pair and a 22/37 pair the peak pressure and the fillet stress at a/4
 are within 0.2 % of those at a/12, at 0.36-0.40 times the DOF (docs/benchmarks.md, "Fifth round: the axial size of
-a uniform line contact"); a line load that varies along the face (misalignment: 1.2 % lower peak at a/4 with 2'
-of misalignment, 0.3 % at a/6; end relief) keeps a/6.
+a uniform line contact"); a line load that varies along the face (misalignment: 1.2-1.7 % lower peak at a/4 with
+2' of misalignment, 0.3 % at a/6; end relief) keeps a/6.
 """
 
 from __future__ import annotations
