@@ -31,6 +31,7 @@ import scipy.sparse as sp
 
 from fem.assembly import BlockPattern
 from fem.constraints import Reduction
+from fem.errors import FEError
 from fem.la.pardiso import on_pattern
 
 __all__ = ["BorderedLayout", "bordered_layout"]
@@ -78,6 +79,7 @@ class BorderedLayout:
     x_dst: np.ndarray  # ... their positions in A.data
     g_data: np.ndarray  # (iii): the values of G_r^T ...
     g_dst: np.ndarray  # ... and their positions in A.data
+    k_nnz: int  # entries of K's pattern (a K of another pattern is refused)
     tied: np.ndarray  # the tied DOFs (rows of R that hold entries)
     Rt: sp.csr_matrix  # R[tied]^T (n_g, len(tied))
     T: sp.csr_matrix
@@ -85,6 +87,8 @@ class BorderedLayout:
     def values(self, K: sp.csr_matrix) -> sp.csr_matrix:
         """The upper triangle of A with the values of K (sorted CSR on the pattern of the connectivity: the matrix
         :meth:`fem.assembly.BlockAssembly.assemble` gives)."""
+        if K.nnz != self.k_nnz:
+            raise FEError(f"the stiffness has {K.nnz} entries, its layout was made for a pattern of {self.k_nnz}")
         data = np.zeros(self.pattern.nnz)
         data[self.dst] = K.data[self.src]
         if self.x_pattern.nnz:
@@ -144,4 +148,4 @@ def bordered_layout(pattern: BlockPattern, red: Reduction, GrT: sp.csr_matrix | 
     idt = np.int32 if max(len(indices), n_r + k) < np.iinfo(np.int32).max else np.int64
     P = sp.csr_matrix((np.ones(len(indices)), indices.astype(idt), indptr.astype(idt)), shape=(n_r + k, n_r + k))
     P.has_sorted_indices = True
-    return BorderedLayout(P, n_f, src, dst, Xp, x_dst, np.asarray(G.data, float), g_dst, tied, Rt, red.T)
+    return BorderedLayout(P, n_f, src, dst, Xp, x_dst, np.asarray(G.data, float), g_dst, len(idx), tied, Rt, red.T)

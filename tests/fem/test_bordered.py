@@ -8,6 +8,7 @@ from fem.analysis import _cell_materials, _contact
 from fem.assembly import block_assembly, block_pattern
 from fem.bordered import bordered_layout
 from fem.constraints import reduction
+from fem.errors import FEError
 from fem.elements.hex8 import hex8_matrices
 from fem.la.pardiso import upper_csr
 from fem.mesh.primitives import SplineMesh
@@ -45,5 +46,7 @@ def test_layout_values_equal_the_bordered_product(name, mesh_model):
     assert np.array_equal(layout.pattern.indptr, A.indptr) and np.array_equal(layout.pattern.indices, A.indices)
     assert np.array_equal(A.indices[A.indptr[:-1]], np.arange(A.shape[0]))
     assert all(np.all(np.diff(A.indices[A.indptr[i]:A.indptr[i + 1]]) > 0) for i in range(A.shape[0]))
+    with pytest.raises(FEError, match="layout was made for"):
+        layout.values(upper_csr(K))
     if name == "cantilever":  # the case without rigid columns (X empty) and without gap rows
         assert len(red.free_rigid) == 0 and k == 0
