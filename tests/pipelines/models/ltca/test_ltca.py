@@ -238,7 +238,7 @@ def test_aligned_spur_pair_double_contact_matches_full_fe():
     p = fe_check(model, rows, [0])["positions"][0]
     assert min(p["fe_shares"]["pinion0-wheel0"], p["fe_shares"]["pinion1-wheel1"]) > 0.4
     assert p["share_error"] <= TARGETS["load_share"]  # measured 0.006
-    assert p["rotation_error"] <= TARGETS["elastic_rotation"]  # measured 0.3 %
+    assert p["rotation_error"] <= TARGETS["elastic_rotation"]  # measured 1.52 %  # measured 0.3 %
 
 
 # The full contact FE of the misaligned pair (refine 0.5, three teeth: 94k DOF), measured 26 Nov 2026 with the LTCA
@@ -269,7 +269,7 @@ def test_misaligned_spur_pair_edge_contact_matches_full_fe():
     model = _coarse_spur(misalignment={"d_gamma_arcmin": 2.0})
     rows, _, _ = solve_positions(model, [np.radians(-11.368)], (model.case.torque,))
     p = fe_check(model, rows, [0])["positions"][0]
-    assert p["rotation_error"] <= TARGETS["elastic_rotation"]
+    assert p["rotation_error"] <= TARGETS["elastic_rotation"]  # measured 1.52 %
     assert p["share_error"] <= TARGETS["load_share"]
 
 
@@ -313,14 +313,19 @@ def test_strip_flattening_has_the_half_plane_log_slope():
 
 # ---------------------------------------------------------------------------------------------- crowned helical pair
 HELICAL = "pipelines/cases/ltca_helical_crowned.toml"
+# the FE check's refine: the FE's rotation converges toward the LTCA's with refine (today's defaults, measured
+# 2026-11-26: -28.255 / -28.129 / -28.021 / -27.998 arcsec at refine 0.18 / 0.25 / 0.3 / 0.35 against the LTCA's
+# -27.594); 0.3 is within 0.1 % of 0.35 at 414k DOF and 4.5 GB (0.35: 576k DOF, 6.8 GB; docs/ltca.md)
+HELICAL_FE_REFINE = 0.3
 
 
 @pytest.fixture(scope="module")
 def helical_ltca():
     """The crowned helical pair of ltca_helical_crowned.toml (ε_α + ε_β = 2.7) on a coarse flank grid (1.0 x 3.0 mm)
-    at φ1 = -10.565°, where three pairs of teeth share the load: the LTCA alone (its FE check: :func:`helical`)."""
+    at φ1 = -10.565°, where three pairs of teeth share the load: the LTCA alone (its FE check: :func:`helical`).
+    ``[mesh] refine`` is the FE check's only: the LTCA's flank grid is its own (LTCAOptions)."""
     case, _ = read_ltca_case(load_case(HELICAL))
-    case = dataclasses.replace(case, mesh=dataclasses.replace(case.mesh, refine=0.18))
+    case = dataclasses.replace(case, mesh=dataclasses.replace(case.mesh, refine=HELICAL_FE_REFINE))
     model = build_model(case, LTCAOptions(positions=40, torques=(case.torque,), profile_size=1.0, axial_size=3.0,
                                           slice=1.0))
     rows, _, _ = solve_positions(model, [np.radians(-10.5652)], (case.torque,))
@@ -329,8 +334,8 @@ def helical_ltca():
 
 @pytest.fixture(scope="module")
 def helical(helical_ltca):
-    """:func:`helical_ltca` and the refine-0.18 FE of the same case there (five teeth, 199k DOF; about 60 s on an
-    idle machine): a peer run, used by the ``bench`` tests only."""
+    """:func:`helical_ltca` and the refine-0.3 FE of the same case there (five teeth, 414k DOF, 4.5 GB peak; FE
+    about 21 s on a machine otherwise lightly loaded): a peer run, used by the ``bench`` tests only."""
     model, rows = helical_ltca
     return model, rows, fe_check(model, rows, [0])["positions"][0]
 
@@ -343,7 +348,7 @@ def test_helical_pair_models_the_third_pair_within_reach(helical_ltca):
     """Two pitches from the pair in contact a third pair is 1.6 um from contact (TCA): the three-tooth models
     centred on the pair in contact left it out, in the LTCA and in its FE check. The LTCA now models the five
     teeth per gear that the pairs within reach span and loads that pair (measured here: LTCA 0.012). Its FE check
-    of the same five teeth (199k DOF) is a peer run in make bench: test_helical_pair_third_pair_matches_full_fe."""
+    of the same five teeth (414k DOF) is a peer run in make bench: test_helical_pair_third_pair_matches_full_fe."""
     model, rows = helical_ltca
     assert model.case.mesh.teeth == 5
     assert rows[0]["pairs_loaded"] == 3
@@ -352,29 +357,31 @@ def test_helical_pair_models_the_third_pair_within_reach(helical_ltca):
 
 @pytest.mark.bench
 def test_helical_pair_third_pair_matches_full_fe(helical):
-    """The FE check of the five teeth also loads the third pair (measured here: FE 0.018, LTCA 0.012; the FE at
-    refine 0.2-0.3: 0.020-0.022), and the shares agree."""
+    """The FE check of the five teeth also loads the third pair (measured here at refine 0.3: FE 0.021, LTCA 0.012;
+    the FE at refine 0.18 / 0.25 / 0.35: 0.018 / 0.021 / 0.021), and the shares agree."""
     _, _, p = helical
     assert p["fe_shares"][THIRD] > 0.005 and p["ltca_shares"][THIRD] > 0.005
-    assert p["share_error"] <= TARGETS["load_share"]  # measured 0.010
+    assert p["share_error"] <= TARGETS["load_share"]  # measured 0.0094 (0.013 at refine 0.18)
 
 
 @pytest.mark.bench
-@pytest.mark.xfail(strict=True, reason="measured 2.34 % (1.4 % before issue 26's grading rounds, 2.85 % after the third): "
-                   "the refine-0.18 FE check is graded faster away from the zones now and is stiffer; not resolved, "
-                   "docs/ltca.md and docs/benchmarks.md 'Fourth round (branch speed26)'")
 def test_helical_pair_rotation_matches_full_fe(helical):
     """The TCA contact of this helical pair is an edge (the pinion's tip, a face end), yet under load it touches
     along whole inclined contact lines: the full FE refines them (pipelines.models.stress.sizing.contact_sizes). With the
     edge rule's zone about the point the FE was 15.6 % more compliant than the LTCA (refine 0.5, three teeth).
-    Measured here 1.4 %; the default LTCA and the refine-0.3 FE agree to 0.04-0.35 % (docs/ltca.md). A peer run
-    (199k DOF FE): make bench.
+
+    The FE reference is at refine 0.3. Measured 2026-11-26 (LTCA -27.594 arcsec; FE with today's defaults): refine
+    0.18 -28.255 arcsec (2.34 %, 161k DOF), 0.25 -28.129 (1.90 %), 0.3 -28.021 (1.52 %, 414k DOF), 0.35 -27.998
+    (1.44 %, 576k DOF): the FE converges toward the LTCA, and the refine-0.18 FE (the check until then, a strict xfail
+    at 2.34 %) is the compliant outlier. Pinning the grading does not help at refine 0.18: the third round's
+    (growth 1.3, layers 1.5) 3.27 %, refine 0.3's layer growths 2.77 %. The default LTCA (0.45 x 1.5 mm) is
+    -27.839 arcsec here, 0.65 % from this FE (docs/ltca.md). A peer run: make bench.
 
     The peak pressure is not compared here: the FE's peak at this position is the corner of the wheel's tip and
-    the pinion's face end, a sharp-edge concentration that grows with refinement (2148 / 2782 / 3387 MPa at refine
-    0.2 / 0.25 / 0.3): agreement with it at one level is a coincidence (docs/ltca.md)."""
+    the pinion's face end, a sharp-edge concentration that grows with refinement (2230 / 3011 / 3623 / 4157 MPa at
+    refine 0.18 / 0.25 / 0.3 / 0.35): agreement with it at one level is a coincidence (docs/ltca.md)."""
     _, _, p = helical
-    assert p["rotation_error"] <= TARGETS["elastic_rotation"]
+    assert p["rotation_error"] <= TARGETS["elastic_rotation"]  # measured 1.52 %
 
 
 @pytest.mark.slow
