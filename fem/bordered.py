@@ -32,17 +32,19 @@ import scipy.sparse as sp
 from fem.assembly import BlockPattern
 from fem.constraints import Reduction
 from fem.errors import FEError
-from fem.la.pardiso import on_pattern
+from fem.la.pardiso import on_pattern, triu_csr
 
 __all__ = ["BorderedLayout", "bordered_layout"]
 
 
-def _row_entries(indptr: np.ndarray, rows: np.ndarray) -> np.ndarray:
-    """Positions in a CSR matrix's data of the entries of ``rows`` (in that order)."""
+def _rows(indptr: np.ndarray, indices: np.ndarray, data: np.ndarray, rows: np.ndarray, n_cols: int) -> sp.csr_matrix:
+    """Rows ``rows`` of the CSR matrix (data, indices, indptr) with ``n_cols`` columns, as CSR (len(rows), n_cols)."""
     starts = indptr[rows].astype(np.int64)
     lengths = np.diff(indptr)[rows].astype(np.int64)
-    shift = np.repeat(starts - (np.cumsum(lengths) - lengths), lengths)
-    return np.arange(int(lengths.sum()), dtype=np.int64) + shift
+    out_ptr = np.zeros(len(rows) + 1, np.int64)
+    np.cumsum(lengths, out=out_ptr[1:])
+    pos = np.arange(out_ptr[-1], dtype=np.int64) + np.repeat(starts - out_ptr[:-1], lengths)
+    return sp.csr_matrix((data[pos], indices[pos], out_ptr), shape=(len(rows), n_cols))
 
 
 def _ones(M: sp.csr_matrix) -> sp.csr_matrix:
@@ -52,16 +54,7 @@ def _ones(M: sp.csr_matrix) -> sp.csr_matrix:
 
 def _upper_x(Xt: sp.spmatrix, n_f: int) -> sp.csr_matrix:
     """The entries (i, j) of X = Xt^T with i <= n_f + j (upper triangle of A), sorted CSR."""
-    X = Xt.T.tocsr()
-    X.sum_duplicates()
-    rows = np.repeat(np.arange(X.shape[0]), np.diff(X.indptr))
-    keep = rows <= n_f + X.indices
-    counts = np.bincount(rows[keep], minlength=X.shape[0])
-    indptr = np.zeros(X.shape[0] + 1, np.int64)
-    np.cumsum(counts, out=indptr[1:])
-    U = sp.csr_matrix((X.data[keep], X.indices[keep], indptr), shape=X.shape)
-    U.has_sorted_indices = True
-    return U
+    return triu_csr(Xt.T.tocsr(), -n_f)
 
 
 @dataclass(frozen=True, eq=False)
@@ -92,9 +85,7 @@ class BorderedLayout:
         data = np.zeros(self.pattern.nnz)
         data[self.dst] = K.data[self.src]
         if self.x_pattern.nnz:
-            pos = _row_entries(K.indptr, self.tied)
-            indptr = np.concatenate([[0], np.cumsum(np.diff(K.indptr)[self.tied])])
-            Kt = sp.csr_matrix((K.data[pos], K.indices[pos], indptr), shape=(len(self.tied), K.shape[1]))
+            Kt = _rows(K.indptr, K.indices, K.data, self.tied, K.shape[1])
             data[self.x_dst] = on_pattern(_upper_x(self.Rt @ Kt @ self.T, self.n_free), self.x_pattern).data
         data[self.g_dst] = self.g_data
         A = sp.csr_matrix((data, self.pattern.indices, self.pattern.indptr), shape=self.pattern.shape)
@@ -121,9 +112,7 @@ def bordered_layout(pattern: BlockPattern, red: Reduction, GrT: sp.csr_matrix | 
     R = red.T[:, n_f:].tocsr()
     tied = np.flatnonzero(np.diff(R.indptr) > 0)
     Rt = R[tied].T.tocsr()
-    pos = _row_entries(pattern.indptr, tied)
-    Kt = sp.csr_matrix((np.ones(len(pos)), idx[pos], np.concatenate([[0], np.cumsum(np.diff(pattern.indptr)[tied])])),
-                       shape=(len(tied), len(free)))
+    Kt = _rows(pattern.indptr, idx, np.broadcast_to(1.0, idx.shape), tied, len(free))  # the pattern's tied rows
     diag = sp.csr_matrix((np.ones(n_g), (np.arange(n_g), n_f + np.arange(n_g))), shape=(n_g, n_r))
     Xp = _upper_x(_ones(Rt) @ Kt @ _ones(red.T) + diag, n_f)
     Xp.data[:] = 1.0

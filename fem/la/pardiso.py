@@ -25,7 +25,7 @@ import scipy.sparse as sp
 
 from fem.errors import FEError
 
-__all__ = ["available", "upper_csr", "on_pattern", "Pardiso"]
+__all__ = ["available", "triu_csr", "upper_csr", "on_pattern", "Pardiso"]
 
 _P = ctypes.POINTER
 _I32 = ctypes.c_int32
@@ -60,30 +60,38 @@ def _load():
 _PARDISO = _load()
 
 
+def triu_csr(K: sp.spmatrix, k: int = 0) -> sp.csr_matrix:
+    """The entries (i, j) of K with j - i >= k, sorted CSR (``scipy.sparse.triu`` without its COO round trip): a
+    canonical CSR matrix is cut by a mask on its column indices."""
+    K = sp.csr_matrix(K)
+    if not K.has_canonical_format:
+        K = K.copy()
+        K.sum_duplicates()  # also sorts the indices
+    n = K.shape[0]
+    row = np.repeat(np.arange(n, dtype=K.indices.dtype), np.diff(K.indptr))
+    keep = K.indices.astype(np.int64) - row >= k
+    indptr = np.zeros(n + 1, np.int64)
+    np.cumsum(np.bincount(row[keep], minlength=n), out=indptr[1:])
+    U = sp.csr_matrix((K.data[keep], K.indices[keep], indptr), shape=K.shape)
+    U.has_sorted_indices = True
+    return U
+
+
 def upper_csr(K: sp.spmatrix) -> sp.csr_matrix:
     """The upper triangle of symmetric K as sorted CSR with every diagonal entry stored (zeros included).
 
     PARDISO wants the diagonal of every row, also the zero diagonal of the gap rows of a bordered
     matrix. A canonical CSR matrix that already stores its diagonal is cut by a mask on its column
-    indices (no COO round trip); otherwise the missing diagonal entries are added."""
-    K = sp.csr_matrix(K)
-    n = K.shape[0]
-    if not K.has_canonical_format:
-        K = K.copy()
-        K.sum_duplicates()  # also sorts the indices
-    row = np.repeat(np.arange(n, dtype=K.indices.dtype), np.diff(K.indptr))
-    keep = K.indices >= row
-    counts = np.bincount(row[keep], minlength=n)
-    indptr = np.zeros(n + 1, np.int64)
-    np.cumsum(counts, out=indptr[1:])
-    U = sp.csr_matrix((K.data[keep], K.indices[keep], indptr), shape=K.shape)
-    first = U.indices[indptr[:-1][counts > 0]]
+    indices (:func:`triu_csr`); otherwise the missing diagonal entries are added."""
+    U = triu_csr(K)
+    n = U.shape[0]
+    counts = np.diff(U.indptr)
+    first = U.indices[U.indptr[:-1][counts > 0]]
     if np.count_nonzero(counts) == n and np.array_equal(first, np.flatnonzero(counts)):
-        U.has_sorted_indices = True
         return U  # sorted rows whose first entry is the diagonal: all diagonal entries stored
     C = U.tocoo()
     U = sp.coo_matrix((np.concatenate([C.data, np.zeros(n)]), (np.concatenate([C.row, np.arange(n)]),
-                       np.concatenate([C.col, np.arange(n)]))), shape=K.shape).tocsr()
+                       np.concatenate([C.col, np.arange(n)]))), shape=U.shape).tocsr()
     U.sum_duplicates()
     U.sort_indices()
     return U

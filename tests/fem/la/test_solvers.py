@@ -78,6 +78,20 @@ def test_pardiso_refuses_a_matrix_given_as_upper_that_is_not():
         pardiso.Pardiso(K, None, upper=True)  # the whole symmetric matrix: rows do not start at the diagonal
 
 
+@pytest.mark.parametrize("k", [-3, 0, 2])
+def test_triu_csr_equals_scipy_triu(k):
+    """triu_csr(K, k): scipy.sparse.triu's entries, sorted CSR, also from a matrix with duplicate entries."""
+    K, _ = _spd(60, seed=8)
+    K = sp.csr_matrix(K)
+    e = K.indptr[5] - 1  # row 4's last entry, stored again at the end of row 4 (unsorted duplicates)
+    dup = sp.csr_matrix((np.insert(K.data, e + 1, 1.5), np.insert(K.indices, e + 1, K.indices[e]),
+                         K.indptr + (np.arange(len(K.indptr)) >= 5)), shape=K.shape)
+    assert not dup.has_canonical_format
+    U = pardiso.triu_csr(dup, k)
+    assert U.has_sorted_indices
+    np.testing.assert_array_equal(U.toarray(), sp.triu(dup, k).toarray())
+
+
 def test_on_pattern_puts_values_on_a_larger_pattern():
     """on_pattern: the values of a matrix whose product dropped exact zeros, on the pattern analysed before."""
     K, _ = _spd(120, seed=7)
