@@ -87,7 +87,6 @@ class PendingSchur:
 
     def __init__(self, U: sp.spmatrix, C: np.ndarray, method: str, definite: bool):
         self.method = choose_solver(method)
-        self.pattern = U  # the upper-triangle pattern analysed: the values given to factor() must have it
         self.C = np.asarray(C, np.int64)
         self.definite = definite
         self.analysis_s = 0.0
