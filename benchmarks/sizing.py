@@ -203,15 +203,20 @@ def _child(label: str, flag: str = "--row") -> dict:
     return json.loads(p.stdout.strip().splitlines()[-1])
 
 
+def _write_study(out: Path, name: str, lines: list[str], rows: dict) -> None:
+    """A study's table ``out/<name>.md`` and its rows ``out/<name>.json``."""
+    out.mkdir(parents=True, exist_ok=True)
+    (out / f"{name}.md").write_text("\n".join(lines) + "\n")
+    (out / f"{name}.json").write_text(json.dumps(rows, indent=1, default=str))
+
+
 def fourth_study(out: Path) -> dict:
     """The rows of :data:`FOURTH` (each in its own process), written to ``out/fourth.md``."""
     rows = {label: _child(label, "--fourth-row") for label, _, _ in FOURTH}
     L = ["# Fourth round: the fillet target (crowned pair at refine 1)", "",
          "| variant | DOF | fillet [MPa] | peak pressure [MPa] | solve [s] |", "|---|---|---|---|---|"]
     L += [f"| {k} | {r['dofs']} | {r['fillet']:.1f} | {r['p']:.1f} | {r['solve_s']:.1f} |" for k, r in rows.items()]
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "fourth.md").write_text("\n".join(L) + "\n")
-    (out / "fourth.json").write_text(json.dumps(rows, indent=1, default=str))
+    _write_study(out, "fourth", L, rows)
     return rows
 
 
@@ -219,13 +224,12 @@ def line_study(out: Path) -> dict:
     """The rows of :data:`LINE` (each in its own process), written to ``out/line.md``."""
     rows = {label: _child(label, "--line-row") for label, _, _, _ in LINE}
     L = ["# Fifth round: the axial size of a uniform line contact (G7)", "",
-         "| variant | DOF | end to end [s] | peak pressure [MPa] | Hertz p0 [MPa] | fillet [MPa] | max von Mises [MPa] |",
+         "| variant | DOF | end to end [s] | peak pressure [MPa] | Hertz p0 [MPa] | fillet [MPa] | max von Mises "
+         "[MPa] |",
          "|---|---|---|---|---|---|---|"]
     L += [f"| {k} | {r['dofs']} | {r['total_s']:.1f} | {r['p']:.1f} | {r['hertz_p0']:.1f} | {r['fillet']:.2f} | "
           f"{r['von_mises']:.1f} |" for k, r in rows.items()]
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "line.md").write_text("\n".join(L) + "\n")
-    (out / "line.json").write_text(json.dumps(rows, indent=1, default=str))
+    _write_study(out, "line", L, rows)
     return rows
 
 
@@ -253,9 +257,7 @@ def grading_study(out: Path) -> dict:
                   f"{rows[lab[6]]['fillet'] / x.value - 1:+.1%}"]
         except InputError as e:
             L += ["", f"Richardson ({name}): none ({e})"]
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "grading.md").write_text("\n".join(L) + "\n")
-    (out / "grading.json").write_text(json.dumps(rows, indent=1, default=str))
+    _write_study(out, "grading", L, rows)
     return rows
 
 
